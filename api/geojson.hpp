@@ -1,0 +1,41 @@
+#pragma once
+// Model -> JSON/GeoJSON (RFC 7946, lon/lat). Coordinates are rounded to 1e-7 degrees (about
+// 1 cm), which keeps bodies small without visible loss.
+
+#include "catalog.hpp"
+
+#include "geo/lonlat.hpp"
+#include "model/city.hpp"
+#include "model/road.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <optional>
+
+namespace tourmap::api {
+
+nlohmann::json position(geo::LonLat p);
+nlohmann::json bbox_json(const geo::BBox& box);
+
+nlohmann::json city_summary(const model::CityInfo& info);
+nlohmann::json road_network_summary(const model::RoadNetworkInfo& info);
+
+// Stations as Points and edges as LineStrings, with the line table and attribution as foreign
+// members; `bbox` keeps the stations inside it and the edges that touch it.
+nlohmann::json metro_geojson(const model::City& city, const std::optional<geo::BBox>& bbox);
+
+struct PoiPage {
+  std::size_t limit = 1000;
+  std::size_t offset = 0;
+};
+nlohmann::json pois_geojson(const model::City& city, const std::optional<geo::BBox>& bbox,
+                            const std::vector<std::uint32_t>& selected, const PoiPage& page);
+
+// Ways as LineStrings (split where they leave `bbox`), with OSM way ids, road class, name and,
+// when `with_nodes`, the OSM node ids along each line.
+nlohmann::json roads_geojson(const RoadNetworkEntry& entry, const std::optional<geo::BBox>& bbox, bool with_nodes);
+
+// True when the segment a-b touches the box (Liang-Barsky clipping in lon/lat).
+bool segment_touches(geo::LonLat a, geo::LonLat b, const geo::BBox& box);
+
+}  // namespace tourmap::api

@@ -1,0 +1,36 @@
+// Road networks: list and GeoJSON (optionally clipped to a bbox).
+
+#include "geojson.hpp"
+#include "params.hpp"
+#include "routes.hpp"
+
+#include "store/repo.hpp"
+
+namespace tourmap::api {
+
+void add_road_routes(Router& router, AppContext& ctx) {
+  router.add("GET", "/api/v1/roads", Exec::compute, [&ctx](Request&) {
+    auto db = ctx.db.acquire();
+    nlohmann::json roads = nlohmann::json::array();
+    for (const auto& info : store::list_road_networks(*db)) roads.push_back(road_network_summary(info));
+    Response r = json_response({{"roads", std::move(roads)}});
+    r.cacheable = true;
+    r.max_age_s = 60;
+    return r;
+  });
+
+  router.add("GET", "/api/v1/roads/{id}", Exec::compute, [&ctx](Request& req) {
+    auto bbox = query_bbox(req);
+    bool with_nodes = query_bool(req, "nodes", false);
+    const auto& id = req.param("id");
+    require_slug(id, "road network");
+    auto entry = ctx.catalog.road_network(id);
+    if (!entry) throw ApiError(404, "not_found", "no road network '" + id + "'", "id");
+    Response r = geojson_response(roads_geojson(*entry, bbox, with_nodes));
+    r.cacheable = true;
+    r.max_age_s = 60;
+    return r;
+  });
+}
+
+}  // namespace tourmap::api

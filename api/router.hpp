@@ -1,0 +1,44 @@
+#pragma once
+// Routes: method + path pattern with {name} segments, e.g. /api/v1/cities/{id}/metro.
+// Each route says where it runs: on the IO threads (cheap, bounded work) or on the compute pool.
+
+#include "http.hpp"
+
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace tourmap::api {
+
+enum class Exec { io, compute };
+
+using Handler = std::function<Response(Request&)>;
+
+struct Route {
+  std::string method;
+  std::string pattern;  // also the metrics label
+  Exec exec = Exec::compute;
+  Handler handler;
+  std::vector<std::string> segments;  // pattern split at '/'; "{x}" marks a parameter
+};
+
+struct RouteMatch {
+  const Route* route = nullptr;            // null: no route for this method and path
+  std::vector<std::string> allowed;        // methods the path has, when the method did not match
+};
+
+class Router {
+ public:
+  void add(std::string method, std::string pattern, Exec exec, Handler handler);
+  // Finds the route and fills `request.params`.
+  RouteMatch match(Request& request) const;
+  const std::vector<Route>& routes() const { return routes_; }
+
+ private:
+  std::vector<Route> routes_;
+};
+
+std::vector<std::string> split_path(const std::string& path);
+
+}  // namespace tourmap::api

@@ -1,0 +1,34 @@
+#pragma once
+// Every API route tourmap serves, registered on a Router. The server adds only transport-level
+// routes (/metrics) and static files.
+
+#include "catalog.hpp"
+#include "router.hpp"
+
+#include <chrono>
+#include <string>
+
+namespace tourmap::api {
+
+struct AppContext {
+  store::DbPool& db;
+  Catalog& catalog;
+  std::string version;  // tourmap build version
+  std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
+};
+
+// Limits applied by the handlers (documented in openapi.yaml).
+inline constexpr std::size_t kMaxPoiLimit = 10000;
+inline constexpr std::size_t kDefaultPoiLimit = 1000;
+
+void add_system_routes(Router& router, AppContext& ctx);
+void add_city_routes(Router& router, AppContext& ctx);
+void add_road_routes(Router& router, AppContext& ctx);
+
+inline void add_api_routes(Router& router, AppContext& ctx) {
+  add_system_routes(router, ctx);
+  add_city_routes(router, ctx);
+  add_road_routes(router, ctx);
+}
+
+}  // namespace tourmap::api

@@ -1,0 +1,56 @@
+#include "geo/projection.hpp"
+
+#include <GeographicLib/Geodesic.hpp>
+#include <GeographicLib/TransverseMercator.hpp>
+
+#include <cstdio>
+
+namespace tourmap::geo {
+namespace {
+
+const GeographicLib::TransverseMercator& tm() {
+  // Scale 1 on the central meridian: distances near the city centre are true metres.
+  static const GeographicLib::TransverseMercator instance(GeographicLib::Constants::WGS84_a(),
+                                                          GeographicLib::Constants::WGS84_f(), 1.0);
+  return instance;
+}
+
+// Northing of the origin, so that the origin maps to (0, 0).
+double origin_northing(const LocalProjection& proj) {
+  double x = 0.0, y = 0.0;
+  tm().Forward(proj.origin.lon, proj.origin.lat, proj.origin.lon, x, y);
+  return y;
+}
+
+}  // namespace
+
+LocalProjection projection_for(const BBox& box) {
+  if (box.empty()) return LocalProjection{};
+  return LocalProjection{box.center()};
+}
+
+XY project(const LocalProjection& proj, LonLat p) {
+  double x = 0.0, y = 0.0;
+  tm().Forward(proj.origin.lon, p.lat, p.lon, x, y);
+  return {x, y - origin_northing(proj)};
+}
+
+LonLat unproject(const LocalProjection& proj, XY p) {
+  double lat = 0.0, lon = 0.0;
+  tm().Reverse(proj.origin.lon, p.x, p.y + origin_northing(proj), lat, lon);
+  return {lon, lat};
+}
+
+double geodesic_distance_m(LonLat a, LonLat b) {
+  double s12 = 0.0;
+  GeographicLib::Geodesic::WGS84().Inverse(a.lat, a.lon, b.lat, b.lon, s12);
+  return s12;
+}
+
+std::string describe(const LocalProjection& proj) {
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "tmerc lon0=%.7f lat0=%.7f k0=1", proj.origin.lon, proj.origin.lat);
+  return buf;
+}
+
+}  // namespace tourmap::geo

@@ -1,0 +1,33 @@
+#pragma once
+// POI loaders: GeoJSON (Point features), CSV, and a JSON/JS array of objects. Field names vary by
+// source, so each field is looked up under the names the known sources use (case-insensitive):
+//   name: name, title;  position: lon/lng/longitude + lat/latitude (or the GeoJSON geometry);
+//   category: category, type, Wikipedia_Type, tourism;  image: image, image_url, thumbnail;
+//   url: url, website, weitere_inf;  wikipedia: wikipedia, wikipedia url, wikidata;
+//   rank: rank;  popularity: popularity, score;  id: feature id, id, objectid.
+// A record without a name or a valid position is an error naming the record.
+
+#include "model/poi.hpp"
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace tourmap::load {
+
+struct PoiLoadOptions {
+  std::string default_category;  // used when the source has no category field
+};
+
+std::vector<model::Poi> parse_pois_geojson(std::string_view text, const std::string& source,
+                                           const PoiLoadOptions& options = {});
+std::vector<model::Poi> parse_pois_csv(std::string_view text, const std::string& source,
+                                       const PoiLoadOptions& options = {});
+// A JSON array of objects, optionally wrapped as a JS statement `var name = [...];`.
+std::vector<model::Poi> parse_pois_js_array(std::string_view text, const std::string& source,
+                                            const PoiLoadOptions& options = {});
+
+// Picks the parser from the content (and the file extension for CSV).
+std::vector<model::Poi> load_pois(const std::string& path, const PoiLoadOptions& options = {});
+
+}  // namespace tourmap::load

@@ -1,0 +1,252 @@
+#include "cli.hpp"
+
+#include "config.hpp"
+#include "routes_table.hpp"
+#include "server.hpp"
+
+#include "load/file.hpp"
+#include "load/load_error.hpp"
+#include "store/importer.hpp"
+#include "store/manifest.hpp"
+#include "store/migrate.hpp"
+
+#include <boost/program_options.hpp>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+#include <thread>
+
+#ifndef TOURMAP_VERSION
+#define TOURMAP_VERSION "dev"
+#endif
+
+namespace tourmap::server {
+
+namespace po = boost::program_options;
+
+namespace {
+
+constexpr const char* kUsage =
+    "tourmap: interactive tourist maps (map deformation, metro maps, crowd rendering)\n"
+    "\n"
+    "usage: tourmap <command> [options]\n"
+    "\n"
+    "commands:\n"
+    "  serve                     run the HTTP/WebSocket server (default port 8080)\n"
+    "  migrate                   create or upgrade the database schema\n"
+    "  import manifest FILE      import every city and road network a manifest lists\n"
+    "  import metro FILE...      import a city's metro network (--city, --name, --format)\n"
+    "  import pois FILE          import a city's POIs (--city)\n"
+    "  import roads FILE         import an OSM road extract (--id, --name)\n"
+    "  routes                    list the HTTP and WebSocket routes the server registers\n"
+    "\n"
+    "Run `tourmap <command> --help` for the options of a command. Every option can also be set\n"
+    "with an environment variable: --db is TOURMAP_DB, --port is TOURMAP_PORT, and so on.\n";
+
+// TOURMAP_DATA_DIR -> data-dir for options the command knows.
+po::variables_map parse(const po::options_description& desc, const po::positional_options_description& pos,
+                        const std::vector<std::string>& args) {
+  po::variables_map vm;
+  po::store(po::command_line_parser(args).options(desc).positional(pos).run(), vm);
+  po::store(po::parse_environment(desc,
+                                  [&desc](const std::string& env) -> std::string {
+                                    if (env.rfind("TOURMAP_", 0) != 0) return "";
+                                    std::string name = env.substr(8);
+                                    for (auto& c : name) c = c == '_' ? '-' : static_cast<char>(std::tolower(c));
+                                    return desc.find_nothrow(name, false) ? name : "";
+                                  }),
+            vm);
+  po::notify(vm);
+  return vm;
+}
+
+po::options_description db_options(Config& c) {
+  po::options_description d("store");
+  d.add_options()("db", po::value(&c.db_path)->default_value(c.db_path), "SQLite database file (created if missing)");
+  return d;
+}
+
+int cmd_serve(const std::vector<std::string>& args) {
+  Config c = default_config();
+  po::options_description desc("tourmap serve options");
+  desc.add_options()("help,h", "show this help")
+      ("host", po::value(&c.host)->default_value(c.host), "address to listen on (0.0.0.0 for all)")
+      ("port", po::value(&c.port)->default_value(c.port), "port (0 picks a free one)")
+      ("web-root", po::value(&c.web_root)->default_value(c.web_root), "directory of the built web client")
+      ("io-threads", po::value(&c.io_threads)->default_value(c.io_threads), "threads for network IO")
+      ("compute-threads", po::value(&c.compute_threads)->default_value(c.compute_threads),
+       "threads for computation (0: one per core)")
+      ("compute-queue", po::value(&c.compute_queue)->default_value(c.compute_queue),
+       "queued compute requests before answering 503")
+      ("compute-deadline", po::value(&c.compute_deadline_s)->default_value(c.compute_deadline_s),
+       "seconds a request may wait for a compute thread")
+      ("max-body", po::value(&c.max_body_bytes)->default_value(c.max_body_bytes), "request body limit (bytes)")
+      ("max-header", po::value(&c.max_header_bytes)->default_value(c.max_header_bytes), "request header limit (bytes)")
+      ("request-timeout", po::value(&c.request_timeout_s)->default_value(c.request_timeout_s),
+       "seconds to receive a request / send a response")
+      ("idle-timeout", po::value(&c.idle_timeout_s)->default_value(c.idle_timeout_s),
+       "seconds a keep-alive connection may stay idle")
+      ("drain-timeout", po::value(&c.drain_timeout_s)->default_value(c.drain_timeout_s),
+       "seconds to finish in-flight requests on SIGINT/SIGTERM")
+      ("max-ws", po::value(&c.max_ws_connections)->default_value(c.max_ws_connections),
+       "concurrent WebSocket connections")
+      ("access-log", po::value(&c.access_log)->default_value(c.access_log), "'-' (stdout), 'off', or a file");
+  desc.add(db_options(c));
+  auto vm = parse(desc, {}, args);
+  if (vm.count("help")) {
+    std::cout << desc << "\n";
+    return 0;
+  }
+  if (c.compute_threads == 0) c.compute_threads = std::max(1u, std::thread::hardware_concurrency());
+  if (c.io_threads == 0) c.io_threads = 1;
+  if (!std::filesystem::is_directory(c.web_root))
+    std::fprintf(stderr, "warning: web root %s does not exist; only the API is served\n", c.web_root.c_str());
+  return serve(c);
+}
+
+int cmd_migrate(const std::vector<std::string>& args) {
+  Config c = default_config();
+  po::options_description desc("tourmap migrate options");
+  desc.add_options()("help,h", "show this help");
+  desc.add(db_options(c));
+  auto vm = parse(desc, {}, args);
+  if (vm.count("help")) {
+    std::cout << desc << "\n";
+    return 0;
+  }
+  store::Db db(c.db_path);
+  auto applied = store::migrate(db);
+  for (const auto& name : applied) std::printf("applied %s\n", name.c_str());
+  std::printf("schema version %d (%zu applied now)\n", store::schema_version(db), applied.size());
+  return 0;
+}
+
+void print_result(const store::ImportResult& r) {
+  if (r.skipped)
+    std::printf("  %-6s %-20s unchanged since the last import (version %lld); use --force to re-import\n",
+                r.kind.c_str(), r.target.c_str(), static_cast<long long>(r.version));
+  else
+    std::printf("  %-6s %-20s %s in %.2f s (version %lld)\n", r.kind.c_str(), r.target.c_str(), r.summary.c_str(),
+                r.seconds, static_cast<long long>(r.version));
+  std::fflush(stdout);
+}
+
+int cmd_import(const std::vector<std::string>& args) {
+  if (args.empty() || args[0] == "--help" || args[0] == "-h") {
+    std::printf("usage: tourmap import manifest|metro|pois|roads [options] FILE...\n");
+    return args.empty() ? 2 : 0;
+  }
+  std::string what = args[0];
+  std::vector<std::string> rest(args.begin() + 1, args.end());
+  Config c = default_config();
+  std::vector<std::string> files;
+  std::string city, name, format = "loom", attribution, category, id;
+  bool force = false;
+  po::options_description desc("tourmap import " + what + " options");
+  desc.add_options()("help,h", "show this help")("force", po::bool_switch(&force), "import even if unchanged")(
+      "file", po::value(&files)->multitoken(), "input file(s)");
+  if (what == "manifest")
+    desc.add_options()("data-dir", po::value(&c.data_dir)->default_value(c.data_dir),
+                       "directory the manifest's relative paths start from");
+  if (what == "metro")
+    desc.add_options()("city", po::value(&city)->required(), "city id (lower-case slug)")(
+        "name", po::value(&name)->required(), "city name")(
+        "format", po::value(&format)->default_value(format),
+        "loom | station-csvs (stations, lines, connections) | line-csv")(
+        "attribution", po::value(&attribution), "data attribution shown with the city");
+  if (what == "pois")
+    desc.add_options()("city", po::value(&city)->required(), "city id")(
+        "category", po::value(&category), "category for POIs whose source has none")(
+        "attribution", po::value(&attribution), "data attribution shown with the POIs");
+  if (what == "roads")
+    desc.add_options()("id", po::value(&id)->required(), "road network id (lower-case slug)")(
+        "name", po::value(&name)->required(), "road network name")(
+        "attribution", po::value(&attribution)->default_value("© OpenStreetMap contributors (ODbL 1.0)"),
+        "data attribution");
+  if (what != "manifest" && what != "metro" && what != "pois" && what != "roads") {
+    std::fprintf(stderr, "tourmap import: unknown kind '%s' (manifest, metro, pois, roads)\n", what.c_str());
+    return 2;
+  }
+  desc.add(db_options(c));
+  po::positional_options_description pos;
+  pos.add("file", -1);
+  po::variables_map vm;
+  try {
+    vm = parse(desc, pos, rest);
+  } catch (const po::error& e) {
+    std::fprintf(stderr, "tourmap import %s: %s\n", what.c_str(), e.what());
+    return 2;
+  }
+  if (vm.count("help")) {
+    std::cout << desc << "\n";
+    return 0;
+  }
+  if (files.empty()) {
+    std::fprintf(stderr, "tourmap import %s: no input file\n", what.c_str());
+    return 2;
+  }
+
+  store::Db db(c.db_path);
+  store::migrate(db);
+  if (what == "manifest") {
+    if (files.size() != 1) {
+      std::fprintf(stderr, "tourmap import manifest: give one manifest file\n");
+      return 2;
+    }
+    auto manifest = store::parse_manifest(load::read_file(files[0]), c.data_dir);
+    std::printf("importing %zu metro networks, %zu POI sets, %zu road networks from %s\n", manifest.metros.size(),
+                manifest.pois.size(), manifest.roads.size(), c.data_dir.c_str());
+    store::run_manifest(db, manifest, force, print_result);
+  } else if (what == "metro") {
+    print_result(store::import_metro(db, {{city, name, attribution}, store::parse_metro_format(format), files, force}));
+  } else if (what == "pois") {
+    if (files.size() != 1) throw std::invalid_argument("give one POI file");
+    print_result(store::import_pois(db, {city, files[0], category, attribution, force}));
+  } else {
+    if (files.size() != 1) throw std::invalid_argument("give one OSM file");
+    print_result(store::import_roads(db, {{id, name, attribution}, files[0], force}));
+  }
+  return 0;
+}
+
+int cmd_routes() {
+  for (const auto& [method, pattern] : registered_routes()) std::printf("%s %s\n", method.c_str(), pattern.c_str());
+  return 0;
+}
+
+}  // namespace
+
+int run_cli(int argc, char** argv) {
+  std::vector<std::string> args(argv + 1, argv + argc);
+  if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
+    std::fputs(kUsage, stdout);
+    return args.empty() ? 2 : 0;
+  }
+  if (args[0] == "--version") {
+    std::printf("tourmap %s\n", TOURMAP_VERSION);
+    return 0;
+  }
+  std::string cmd = args[0];
+  std::vector<std::string> rest(args.begin() + 1, args.end());
+  try {
+    if (cmd == "serve") return cmd_serve(rest);
+    if (cmd == "migrate") return cmd_migrate(rest);
+    if (cmd == "import") return cmd_import(rest);
+    if (cmd == "routes") return cmd_routes();
+  } catch (const po::error& e) {
+    std::fprintf(stderr, "tourmap %s: %s\n", cmd.c_str(), e.what());
+    return 2;
+  } catch (const load::LoadError& e) {
+    std::fprintf(stderr, "tourmap %s: import failed, nothing was changed: %s\n", cmd.c_str(), e.what());
+    return 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "tourmap %s: %s\n", cmd.c_str(), e.what());
+    return 1;
+  }
+  std::fprintf(stderr, "tourmap: unknown command '%s'\n\n%s", cmd.c_str(), kUsage);
+  return 2;
+}
+
+}  // namespace tourmap::server

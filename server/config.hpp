@@ -1,0 +1,33 @@
+#pragma once
+// Server configuration: defaults, overridden by TOURMAP_* environment variables, overridden by
+// command-line flags (`tourmap serve --help` lists them).
+
+#include <cstddef>
+#include <string>
+
+namespace tourmap::server {
+
+struct Config {
+  std::string host = "127.0.0.1";
+  unsigned short port = 8080;      // 0 picks a free port (printed at start)
+  std::string db_path = "var/tourmap.db";
+  std::string data_dir;            // sample data (../shared/data by default)
+  std::string web_root;            // built web client
+  unsigned io_threads = 2;
+  unsigned compute_threads = 0;    // 0: one per core
+  std::size_t compute_queue = 256;         // queued compute requests before 503
+  double compute_deadline_s = 30.0;        // a request still queued after this gets 503
+  std::size_t max_body_bytes = 1 << 20;    // 413 beyond
+  std::size_t max_header_bytes = 16 << 10; // 431 beyond
+  double request_timeout_s = 30.0;         // to read a request once it started
+  double idle_timeout_s = 60.0;            // keep-alive connection without a request
+  double drain_timeout_s = 10.0;           // graceful shutdown: time for in-flight requests
+  std::size_t gzip_min_bytes = 1024;       // smaller bodies are sent as they are
+  std::string access_log = "-";            // "-" stdout, "off", or a file path
+  std::size_t max_ws_connections = 256;
+};
+
+// Built-in defaults for paths (from the build: the source's ../shared/data and build/web).
+Config default_config();
+
+}  // namespace tourmap::server

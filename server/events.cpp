@@ -1,0 +1,93 @@
+#include "events.hpp"
+
+#include "ws_session.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+
+namespace tourmap::server {
+
+EventHub::EventHub(boost::asio::io_context& ioc, store::DbPool& db, std::chrono::milliseconds interval)
+    : timer_(ioc), db_(db), interval_(interval) {}
+
+std::string EventHub::current_event(const char* type) {
+  auto db = db_.acquire();
+  auto st = db->prepare("SELECT id, kind, target_id FROM imports ORDER BY id DESC LIMIT 1");
+  nlohmann::json ev = {{"type", type}, {"catalog_version", 0}};
+  if (st.step()) {
+    ev["catalog_version"] = st.int64(0);
+    ev["last_import"] = {{"kind", st.text(1)}, {"target", st.text(2)}};
+  }
+  return ev.dump();
+}
+
+WsEndpoint EventHub::endpoint() {
+  WsEndpoint ep;
+  ep.on_open = [this](const std::shared_ptr<WsSession>& s) {
+    {
+      std::lock_guard lock(mutex_);
+      subscribers_[s.get()] = s;
+    }
+    try {
+      s->send_text(current_event("hello"));
+    } catch (const std::exception& e) {
+      s->send_text(nlohmann::json({{"type", "error"}, {"code", "unavailable"}, {"message", e.what()}}).dump());
+    }
+  };
+  ep.on_text = [](const std::shared_ptr<WsSession>& s, const std::string& text) {
+    auto msg = nlohmann::json::parse(text, nullptr, false);
+    if (msg.is_object() && msg.value("type", "") == "ping") {
+      s->send_text(R"({"type":"pong"})");
+      return;
+    }
+    s->send_text(R"({"type":"error","code":"invalid_message","message":"expected {\"type\":\"ping\"}","field":"type"})");
+  };
+  ep.on_close = [this](const std::shared_ptr<WsSession>& s) {
+    std::lock_guard lock(mutex_);
+    subscribers_.erase(s.get());
+  };
+  return ep;
+}
+
+void EventHub::start() {
+  stopped_ = false;
+  poll();
+}
+
+void EventHub::stop() {
+  stopped_ = true;
+  timer_.cancel();
+}
+
+void EventHub::poll() {
+  if (stopped_) return;
+  try {
+    auto db = db_.acquire();
+    auto st = db->prepare("SELECT COALESCE(MAX(id), 0) FROM imports");
+    st.step();
+    auto latest = st.int64(0);
+    if (last_import_ >= 0 && latest != last_import_) broadcast(current_event("catalog"));
+    last_import_ = latest;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "events: cannot read the catalog version: %s\n", e.what());
+  }
+  timer_.expires_after(interval_);
+  timer_.async_wait([this](boost::system::error_code ec) {
+    if (!ec) poll();
+  });
+}
+
+void EventHub::broadcast(const std::string& message) {
+  std::lock_guard lock(mutex_);
+  for (auto it = subscribers_.begin(); it != subscribers_.end();) {
+    if (auto s = it->second.lock()) {
+      s->send_text(message);
+      ++it;
+    } else {
+      it = subscribers_.erase(it);
+    }
+  }
+}
+
+}  // namespace tourmap::server

@@ -1,0 +1,243 @@
+#include "http_session.hpp"
+
+#include "respond.hpp"
+#include "url.hpp"
+#include "ws_session.hpp"
+
+#include <boost/asio/dispatch.hpp>
+#include <boost/asio/post.hpp>
+#include <boost/beast/websocket.hpp>
+
+#include <cstdio>
+
+namespace tourmap::server {
+
+namespace beast = boost::beast;
+namespace http = beast::http;
+namespace net = boost::asio;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+
+std::chrono::steady_clock::duration seconds(double s) {
+  return std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(s));
+}
+
+RequestFacts facts_of(const http::request<http::string_body>& req) {
+  RequestFacts f;
+  f.method = req.method();
+  f.version = req.version();
+  f.keep_alive = req.keep_alive();
+  f.accept_encoding = std::string(req[http::field::accept_encoding]);
+  f.if_none_match = std::string(req[http::field::if_none_match]);
+  return f;
+}
+
+// Runs a handler, turning exceptions into error responses: ApiError keeps its status; anything
+// else is a server fault (500), logged, never a crash.
+api::Response run_handler(const api::Route& route, api::Request& req) {
+  try {
+    return route.handler(req);
+  } catch (const api::ApiError& e) {
+    return api::error_response(e.status, e.code, e.what(), e.field);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "error: %s %s: %s\n", req.method.c_str(), req.path.c_str(), e.what());
+    return api::error_response(500, "internal", "internal error while handling the request");
+  }
+}
+
+}  // namespace
+
+HttpSession::HttpSession(net::ip::tcp::socket&& socket, ServerState& state)
+    : stream_(std::move(socket)), state_(state) {
+  beast::error_code ec;
+  auto ep = stream_.socket().remote_endpoint(ec);
+  remote_ = ec ? "-" : ep.address().to_string();
+}
+
+HttpSession::~HttpSession() {
+  if (registry_id_) state_.http_sessions.remove(registry_id_);
+}
+
+void HttpSession::run() {
+  std::weak_ptr<HttpSession> weak = shared_from_this();
+  auto executor = stream_.get_executor();
+  registry_id_ = state_.http_sessions.add([weak, executor] {
+    net::post(executor, [weak] {
+      if (auto self = weak.lock()) self->shutdown_requested();
+    });
+  });
+  net::dispatch(stream_.get_executor(), beast::bind_front_handler(&HttpSession::read_header, shared_from_this()));
+}
+
+void HttpSession::read_header() {
+  if (state_.stopping) return close();
+  parser_.emplace();
+  parser_->body_limit(state_.config.max_body_bytes);
+  parser_->header_limit(static_cast<std::uint32_t>(state_.config.max_header_bytes));
+  stream_.expires_after(seconds(state_.config.idle_timeout_s));
+  http::async_read_header(stream_, buffer_, *parser_,
+                          [self = shared_from_this()](beast::error_code ec, std::size_t) { self->on_header(ec); });
+}
+
+void HttpSession::on_header(beast::error_code ec) {
+  if (ec) return on_read(ec);
+  busy_ = true;
+  started_ = Clock::now();
+  stream_.expires_after(seconds(state_.config.request_timeout_s));
+  http::async_read(stream_, buffer_, *parser_,
+                   [self = shared_from_this()](beast::error_code ec2, std::size_t) { self->on_read(ec2); });
+}
+
+void HttpSession::fail_read(int status, const std::string& code, const std::string& message) {
+  busy_ = true;
+  started_ = Clock::now();
+  method_ = "-";
+  target_ = "-";
+  RequestFacts facts;
+  facts.keep_alive = false;  // the stream is not in a known state: answer and close
+  send(finish_response(api::error_response(status, code, message), facts, state_.config), "invalid");
+}
+
+void HttpSession::on_read(beast::error_code ec) {
+  if (ec == http::error::end_of_stream || ec == net::error::operation_aborted || ec == beast::error::timeout ||
+      ec == net::error::connection_reset || ec == net::error::eof)
+    return close();
+  if (ec == http::error::body_limit)
+    return fail_read(413, "payload_too_large",
+                     "request body exceeds " + std::to_string(state_.config.max_body_bytes) + " bytes");
+  if (ec == http::error::header_limit)
+    return fail_read(431, "header_too_large",
+                     "request header exceeds " + std::to_string(state_.config.max_header_bytes) + " bytes");
+  if (ec) return fail_read(400, "bad_request", "malformed HTTP request: " + ec.message());
+
+  Request req = parser_->release();
+  if (beast::websocket::is_upgrade(req)) {
+    auto target = parse_target(req.target());
+    auto it = target ? state_.ws_endpoints.find(target->path) : state_.ws_endpoints.end();
+    if (it == state_.ws_endpoints.end()) {
+      busy_ = true;
+      method_ = "GET";
+      target_ = std::string(req.target());
+      send(finish_response(api::error_response(404, "not_found", "no WebSocket endpoint at this path"),
+                           facts_of(req), state_.config),
+           "ws_unmatched");
+      return;
+    }
+    stream_.expires_never();
+    auto ws = std::make_shared<WsSession>(stream_.release_socket(), state_, it->second, it->first);
+    ws->accept(std::move(req));
+    return;
+  }
+  handle(std::move(req));
+}
+
+void HttpSession::handle(Request&& req) {
+  ++state_.in_flight;
+  counted_ = true;
+  method_ = std::string(req.method_string());
+  target_ = std::string(req.target());
+  auto facts = facts_of(req);
+  auto target = parse_target(req.target());
+  if (!target) {
+    route_label_ = "invalid";
+    return send(finish_response(api::error_response(400, "invalid_target", "malformed request target", "path"), facts,
+                                state_.config),
+                route_label_);
+  }
+
+  api::Request areq;
+  areq.method = method_;
+  areq.path = std::move(target->path);
+  areq.query = std::move(target->query);
+  areq.body = std::move(req.body());
+  areq.content_type = std::string(req[http::field::content_type]);
+
+  auto match = state_.router.match(areq);
+  if (!match.route) {
+    bool api_path = areq.path.rfind("/api/", 0) == 0 || areq.path == "/healthz" || areq.path == "/metrics";
+    if (!match.allowed.empty()) {
+      route_label_ = "method_not_allowed";
+      std::string allow;
+      for (const auto& m : match.allowed) allow += (allow.empty() ? "" : ", ") + m;
+      auto r = api::error_response(405, "method_not_allowed", areq.method + " is not allowed here", "method");
+      r.headers.emplace_back("Allow", allow);
+      return send(finish_response(std::move(r), facts, state_.config), route_label_);
+    }
+    route_label_ = api_path ? "unmatched" : "static";
+    std::optional<api::Response> file;
+    if (!api_path && (req.method() == http::verb::get || req.method() == http::verb::head))
+      file = state_.static_files.serve(areq.path);
+    auto r = file ? std::move(*file) : api::error_response(404, "not_found", "nothing at " + areq.path, "path");
+    return send(finish_response(std::move(r), facts, state_.config), route_label_);
+  }
+
+  const api::Route& route = *match.route;
+  route_label_ = route.pattern;
+  if (route.exec == api::Exec::io) {
+    auto r = run_handler(route, areq);
+    return send(finish_response(std::move(r), facts, state_.config), route_label_);
+  }
+
+  // Compute routes: the handler and the response finishing (gzip) run on the pool; the result
+  // comes back to this connection's strand to be written.
+  auto self = shared_from_this();
+  auto deadline = Clock::now() + seconds(state_.config.compute_deadline_s);
+  auto task = [self, &route, areq = std::move(areq), facts](bool expired) mutable {
+    api::Response r = expired ? api::error_response(503, "overloaded", "the request waited too long in the queue")
+                              : run_handler(route, areq);
+    if (expired) r.headers.emplace_back("Retry-After", "1");
+    Response res;
+    try {
+      res = finish_response(std::move(r), facts, self->state_.config);
+    } catch (const std::exception& e) {
+      res = finish_response(api::error_response(500, "internal", e.what()), facts, self->state_.config);
+    }
+    net::post(self->stream_.get_executor(), [self, res = std::move(res)]() mutable {
+      self->send(std::move(res), self->route_label_);
+    });
+  };
+  if (!state_.pool.submit(std::move(task), deadline)) {
+    auto r = api::error_response(503, "overloaded", "the server is busy; retry shortly");
+    r.headers.emplace_back("Retry-After", "1");
+    send(finish_response(std::move(r), facts, state_.config), route_label_);
+  }
+}
+
+void HttpSession::send(Response&& res, const std::string& route_label) {
+  route_label_ = route_label;
+  bool close = res.need_eof() || state_.stopping;
+  if (close) res.keep_alive(false);
+  response_ = std::make_shared<Response>(std::move(res));
+  stream_.expires_after(seconds(state_.config.request_timeout_s));
+  http::async_write(stream_, *response_,
+                    [self = shared_from_this(), close](beast::error_code ec, std::size_t bytes) {
+                      self->on_write(close, ec, bytes);
+                    });
+}
+
+void HttpSession::on_write(bool close_after, beast::error_code ec, std::size_t bytes) {
+  int status = response_ ? static_cast<int>(response_->result_int()) : 0;
+  double ms = std::chrono::duration<double, std::milli>(Clock::now() - started_).count();
+  state_.metrics.observe(route_label_, method_, status, ms / 1000.0);
+  state_.access_log.write(remote_, method_, target_, status, bytes, ms);
+  if (counted_) --state_.in_flight;
+  counted_ = false;
+  response_.reset();
+  busy_ = false;
+  if (ec || close_after) return close();
+  read_header();
+}
+
+void HttpSession::shutdown_requested() {
+  // Idle connections close now; a busy one closes after its response (send() sees `stopping`).
+  if (!busy_) close();
+}
+
+void HttpSession::close() {
+  beast::error_code ec;
+  stream_.socket().shutdown(net::ip::tcp::socket::shutdown_both, ec);
+  stream_.socket().close(ec);
+}
+
+}  // namespace tourmap::server

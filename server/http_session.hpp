@@ -1,0 +1,54 @@
+#pragma once
+// One HTTP/1.1 connection: reads requests (header within the idle timeout, then the body within
+// the request timeout, with size limits), routes them, runs compute routes on the pool, writes
+// responses, and hands WebSocket upgrades to WsSession.
+
+#include "server_state.hpp"
+
+#include <boost/asio/ip/tcp.hpp>
+#include <boost/beast/core.hpp>
+#include <boost/beast/http.hpp>
+
+#include <chrono>
+#include <memory>
+#include <optional>
+
+namespace tourmap::server {
+
+class HttpSession : public std::enable_shared_from_this<HttpSession> {
+ public:
+  HttpSession(boost::asio::ip::tcp::socket&& socket, ServerState& state);
+  ~HttpSession();
+  void run();
+
+ private:
+  using Request = boost::beast::http::request<boost::beast::http::string_body>;
+  using Response = boost::beast::http::response<boost::beast::http::string_body>;
+
+  void read_header();
+  void on_header(boost::beast::error_code ec);
+  void on_read(boost::beast::error_code ec);
+  void handle(Request&& req);
+  void run_compute(const api::Route& route, api::Request&& areq);
+  void send(Response&& res, const std::string& route_label);
+  void on_write(bool close, boost::beast::error_code ec, std::size_t bytes);
+  void fail_read(int status, const std::string& code, const std::string& message);
+  void shutdown_requested();
+  void close();
+
+  boost::beast::tcp_stream stream_;
+  boost::beast::flat_buffer buffer_;
+  std::optional<boost::beast::http::request_parser<boost::beast::http::string_body>> parser_;
+  ServerState& state_;
+  std::uint64_t registry_id_ = 0;
+  std::string remote_;
+
+  // The request being answered (for the access log, metrics and response finishing).
+  bool busy_ = false;
+  bool counted_ = false;  // counted in state_.in_flight
+  std::chrono::steady_clock::time_point started_;
+  std::string method_, target_, route_label_;
+  std::shared_ptr<Response> response_;
+};
+
+}  // namespace tourmap::server

@@ -1,0 +1,84 @@
+#pragma once
+// What every connection shares: configuration, routes, the compute pool, metrics, logs, and
+// the registry of live sessions used for graceful shutdown.
+
+#include "access_log.hpp"
+#include "compute_pool.hpp"
+#include "config.hpp"
+#include "metrics.hpp"
+#include "static_files.hpp"
+
+#include "api/router.hpp"
+
+#include <atomic>
+#include <functional>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+
+namespace tourmap::server {
+
+class WsSession;
+
+// A WebSocket endpoint: called on the session's strand when a client connects and for every
+// text message it sends.
+struct WsEndpoint {
+  std::function<void(const std::shared_ptr<WsSession>&)> on_open;
+  std::function<void(const std::shared_ptr<WsSession>&, const std::string&)> on_text;
+  std::function<void(const std::shared_ptr<WsSession>&)> on_close;
+};
+
+// Sessions register here so shutdown can reach them.
+class SessionRegistry {
+ public:
+  using Closer = std::function<void()>;  // asks the session to finish and close
+  std::uint64_t add(Closer closer) {
+    std::lock_guard lock(mutex_);
+    closers_.emplace(++next_, std::move(closer));
+    return next_;
+  }
+  void remove(std::uint64_t id) {
+    std::lock_guard lock(mutex_);
+    closers_.erase(id);
+  }
+  std::size_t size() const {
+    std::lock_guard lock(mutex_);
+    return closers_.size();
+  }
+  void close_all() {
+    std::map<std::uint64_t, Closer> copy;
+    {
+      std::lock_guard lock(mutex_);
+      copy = closers_;
+    }
+    for (auto& [id, close] : copy) close();
+  }
+
+ private:
+  mutable std::mutex mutex_;
+  std::map<std::uint64_t, Closer> closers_;
+  std::uint64_t next_ = 0;
+};
+
+struct ServerState {
+  explicit ServerState(Config cfg)
+      : config(std::move(cfg)),
+        pool(config.compute_threads, config.compute_queue),
+        access_log(config.access_log),
+        static_files(config.web_root) {}
+
+  Config config;
+  api::Router router;
+  std::map<std::string, WsEndpoint> ws_endpoints;  // by path
+  ComputePool pool;
+  Metrics metrics;
+  AccessLog access_log;
+  StaticFiles static_files;
+  SessionRegistry http_sessions;
+  SessionRegistry ws_sessions;
+  std::atomic<bool> stopping{false};
+  std::atomic<long> in_flight{0};  // requests read and not yet answered
+};
+
+}  // namespace tourmap::server

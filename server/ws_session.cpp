@@ -1,0 +1,125 @@
+#include "ws_session.hpp"
+
+#include <boost/asio/dispatch.hpp>
+#include <boost/asio/post.hpp>
+
+namespace tourmap::server {
+
+namespace beast = boost::beast;
+namespace websocket = beast::websocket;
+namespace net = boost::asio;
+
+WsSession::WsSession(net::ip::tcp::socket&& socket, ServerState& state, const WsEndpoint& endpoint, std::string path)
+    : ws_(std::move(socket)), state_(state), endpoint_(endpoint), path_(std::move(path)) {}
+
+WsSession::~WsSession() {
+  if (registry_id_) state_.ws_sessions.remove(registry_id_);
+}
+
+void WsSession::accept(beast::http::request<beast::http::string_body>&& req) {
+  if (state_.ws_sessions.size() >= state_.config.max_ws_connections) {
+    // Refuse clearly: an HTTP 503 instead of the upgrade.
+    auto res = std::make_shared<beast::http::response<beast::http::string_body>>(
+        beast::http::status::service_unavailable, req.version());
+    res->set(beast::http::field::content_type, "application/json");
+    res->set(beast::http::field::retry_after, "5");
+    res->body() = R"({"error":{"code":"too_many_streams","message":"WebSocket connection limit reached","field":null}})";
+    res->prepare_payload();
+    res->keep_alive(false);
+    beast::http::async_write(ws_.next_layer(), *res, [self = shared_from_this(), res](beast::error_code, std::size_t) {
+      beast::error_code ec;
+      self->ws_.next_layer().socket().shutdown(net::ip::tcp::socket::shutdown_both, ec);
+    });
+    return;
+  }
+  std::weak_ptr<WsSession> weak = shared_from_this();
+  auto executor = ws_.get_executor();
+  registry_id_ = state_.ws_sessions.add([weak, executor] {
+    net::post(executor, [weak] {
+      if (auto self = weak.lock()) self->close(websocket::close_code::going_away, "server shutting down");
+    });
+  });
+  ws_.set_option(websocket::stream_base::timeout::suggested(beast::role_type::server));
+  ws_.set_option(websocket::stream_base::decorator(
+      [](websocket::response_type& res) { res.set(beast::http::field::server, "tourmap"); }));
+  ws_.read_message_max(kMaxMessageBytes);
+  auto shared_req = std::make_shared<beast::http::request<beast::http::string_body>>(std::move(req));
+  ws_.async_accept(*shared_req, [self = shared_from_this(), shared_req](beast::error_code ec) {
+    if (ec) return;
+    self->open_ = true;
+    if (self->endpoint_.on_open) self->endpoint_.on_open(self);
+    self->read();
+    self->write_next();
+  });
+}
+
+void WsSession::send_text(std::string message) { enqueue({std::move(message), false}); }
+void WsSession::send_binary(std::string bytes) { enqueue({std::move(bytes), true}); }
+
+void WsSession::enqueue(Outgoing out) {
+  net::dispatch(ws_.get_executor(), [self = shared_from_this(), out = std::move(out)]() mutable {
+    if (self->closed_) return;
+    if (self->queue_.size() >= kMaxQueued) {
+      self->queue_.pop_front();
+      ++self->dropped_;
+    }
+    self->queue_.push_back(std::move(out));
+    self->write_next();
+  });
+}
+
+void WsSession::write_next() {
+  if (!open_ || writing_ || queue_.empty() || closed_) return;
+  writing_ = true;
+  ws_.binary(queue_.front().binary);
+  ws_.async_write(net::buffer(queue_.front().data), [self = shared_from_this()](beast::error_code ec, std::size_t) {
+    self->writing_ = false;
+    if (!self->queue_.empty()) self->queue_.pop_front();
+    if (ec) return self->finish();
+    self->write_next();
+  });
+}
+
+void WsSession::read() {
+  ws_.async_read(buffer_, [self = shared_from_this()](beast::error_code ec, std::size_t bytes) {
+    self->on_read(ec, bytes);
+  });
+}
+
+void WsSession::on_read(beast::error_code ec, std::size_t) {
+  if (ec == websocket::error::message_too_big) {
+    close(websocket::close_code::too_big, "message exceeds " + std::to_string(kMaxMessageBytes) + " bytes");
+    return;
+  }
+  if (ec) return finish();
+  std::string text = beast::buffers_to_string(buffer_.data());
+  buffer_.consume(buffer_.size());
+  if (ws_.got_text() && endpoint_.on_text) {
+    endpoint_.on_text(shared_from_this(), text);
+  } else if (!ws_.got_text()) {
+    send_text(R"({"type":"error","code":"unsupported","message":"send JSON text messages"})");
+  }
+  read();
+}
+
+void WsSession::close(websocket::close_code code, std::string reason) {
+  if (closed_) return;
+  closed_ = true;
+  queue_.clear();
+  if (!open_) return finish();
+  ws_.async_close(websocket::close_reason(code, reason), [self = shared_from_this()](beast::error_code) {
+    self->finish();
+  });
+}
+
+void WsSession::finish() {
+  if (endpoint_.on_close && open_) endpoint_.on_close(shared_from_this());
+  open_ = false;
+  closed_ = true;
+  if (registry_id_) {
+    state_.ws_sessions.remove(registry_id_);
+    registry_id_ = 0;
+  }
+}
+
+}  // namespace tourmap::server

@@ -1,0 +1,62 @@
+#pragma once
+// One WebSocket connection. Text and binary messages can be sent from any thread; they are
+// queued on the session's strand and written one at a time. The queue is bounded: when a
+// client reads too slowly the oldest queued messages are dropped (counted), never an unbounded
+// backlog.
+
+#include "server_state.hpp"
+
+#include <boost/asio/ip/tcp.hpp>
+#include <boost/beast/core.hpp>
+#include <boost/beast/http.hpp>
+#include <boost/beast/websocket.hpp>
+
+#include <deque>
+#include <memory>
+#include <string>
+
+namespace tourmap::server {
+
+class WsSession : public std::enable_shared_from_this<WsSession> {
+ public:
+  static constexpr std::size_t kMaxQueued = 16;
+  static constexpr std::size_t kMaxMessageBytes = 64 * 1024;
+
+  WsSession(boost::asio::ip::tcp::socket&& socket, ServerState& state, const WsEndpoint& endpoint,
+            std::string path);
+  ~WsSession();
+
+  void accept(boost::beast::http::request<boost::beast::http::string_body>&& req);
+  void send_text(std::string message);
+  void send_binary(std::string bytes);
+  // Closes with a reason (a WebSocket close frame), e.g. on shutdown.
+  void close(boost::beast::websocket::close_code code, std::string reason);
+
+  std::size_t dropped() const { return dropped_; }
+  const std::string& path() const { return path_; }
+
+ private:
+  struct Outgoing {
+    std::string data;
+    bool binary;
+  };
+  void enqueue(Outgoing out);
+  void write_next();
+  void read();
+  void on_read(boost::beast::error_code ec, std::size_t bytes);
+  void finish();
+
+  boost::beast::websocket::stream<boost::beast::tcp_stream> ws_;
+  ServerState& state_;
+  const WsEndpoint& endpoint_;
+  std::string path_;
+  boost::beast::flat_buffer buffer_;
+  std::deque<Outgoing> queue_;
+  bool writing_ = false;
+  bool open_ = false;
+  bool closed_ = false;
+  std::size_t dropped_ = 0;
+  std::uint64_t registry_id_ = 0;
+};
+
+}  // namespace tourmap::server

@@ -1,0 +1,140 @@
+#include "importer.hpp"
+
+#include "load/file.hpp"
+#include "load/metro_load.hpp"
+#include "load/osm_roads.hpp"
+#include "load/poi_load.hpp"
+
+#include <chrono>
+#include <cstdio>
+#include <stdexcept>
+
+namespace tourmap::store {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+std::string join_names(const std::vector<std::string>& files) {
+  std::string out;
+  for (const auto& f : files) out += (out.empty() ? "" : ", ") + load::file_name(f);
+  return out;
+}
+
+void require_id(const std::string& id, const char* what) {
+  if (!is_valid_id(id))
+    throw std::invalid_argument(std::string("invalid ") + what + " id '" + id +
+                                "': use lower-case letters, digits, '-' and '_' (at most 64)");
+}
+
+}  // namespace
+
+MetroFormat parse_metro_format(const std::string& name) {
+  if (name == "loom") return MetroFormat::loom;
+  if (name == "station-csvs") return MetroFormat::station_csvs;
+  if (name == "line-csv") return MetroFormat::line_csv;
+  throw std::invalid_argument("unknown metro format '" + name + "' (expected loom, station-csvs or line-csv)");
+}
+
+std::string fingerprint_files(const std::vector<std::string>& files) {
+  std::uint64_t h = 1469598103934665603ull;
+  for (const auto& f : files) {
+    for (unsigned char c : load::read_file(f)) {
+      h ^= c;
+      h *= 1099511628211ull;
+    }
+    h ^= 0xff;  // file separator
+    h *= 1099511628211ull;
+  }
+  char buf[17];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+  return buf;
+}
+
+ImportResult import_metro(Db& db, const MetroImport& req) {
+  require_id(req.city.id, "city");
+  if (req.city.name.empty()) throw std::invalid_argument("city name is empty");
+  std::size_t expected = req.format == MetroFormat::station_csvs ? 3 : 1;
+  if (req.files.size() != expected)
+    throw std::invalid_argument("metro format needs " + std::to_string(expected) + " file(s), got " +
+                                std::to_string(req.files.size()));
+  auto start = Clock::now();
+  ImportResult result;
+  result.kind = "metro";
+  result.target = req.city.id;
+  auto fp = fingerprint_files(req.files);
+  if (!req.force && last_fingerprint(db, "metro", req.city.id) == fp) {
+    result.skipped = true;
+    result.version = city_version(db, req.city.id).value_or(0);
+    return result;
+  }
+  model::MetroNetwork net;
+  switch (req.format) {
+    case MetroFormat::loom: net = load::load_metro_loom(req.files[0]); break;
+    case MetroFormat::station_csvs: net = load::load_metro_station_csvs(req.files[0], req.files[1], req.files[2]); break;
+    case MetroFormat::line_csv: net = load::load_metro_line_csv(req.files[0]); break;
+  }
+  result.rows = net.nodes.size() + net.edges.size() + net.lines.size();
+  result.seconds = seconds_since(start);
+  result.version = save_city_metro(db, req.city, net,
+                                   {"metro", req.city.id, join_names(req.files), fp, result.rows, result.seconds});
+  result.seconds = seconds_since(start);
+  result.summary = std::to_string(net.station_count()) + " stations, " + std::to_string(net.nodes.size()) +
+                   " nodes, " + std::to_string(net.edges.size()) + " edges, " + std::to_string(net.lines.size()) +
+                   " lines";
+  return result;
+}
+
+ImportResult import_pois(Db& db, const PoiImport& req) {
+  require_id(req.city_id, "city");
+  auto start = Clock::now();
+  ImportResult result;
+  result.kind = "pois";
+  result.target = req.city_id;
+  if (!city_version(db, req.city_id))
+    throw std::invalid_argument("unknown city '" + req.city_id + "': import its metro network first");
+  auto fp = fingerprint_files({req.file});
+  if (!req.force && last_fingerprint(db, "pois", req.city_id) == fp) {
+    result.skipped = true;
+    result.version = city_version(db, req.city_id).value_or(0);
+    return result;
+  }
+  auto pois = load::load_pois(req.file, {req.default_category});
+  result.rows = pois.size();
+  result.version = save_city_pois(db, req.city_id, req.attribution, pois,
+                                  {"pois", req.city_id, load::file_name(req.file), fp, result.rows,
+                                   seconds_since(start)});
+  result.seconds = seconds_since(start);
+  result.summary = std::to_string(pois.size()) + " POIs";
+  return result;
+}
+
+ImportResult import_roads(Db& db, const RoadImport& req) {
+  require_id(req.network.id, "road network");
+  if (req.network.name.empty()) throw std::invalid_argument("road network name is empty");
+  auto start = Clock::now();
+  ImportResult result;
+  result.kind = "roads";
+  result.target = req.network.id;
+  auto fp = fingerprint_files({req.file});
+  if (!req.force && last_fingerprint(db, "roads", req.network.id) == fp) {
+    result.skipped = true;
+    result.version = road_network_version(db, req.network.id).value_or(0);
+    return result;
+  }
+  load::OsmRoadStats stats;
+  auto net = load::load_osm_roads(req.file, &stats);
+  result.rows = net.nodes.size() + net.ways.size() + net.edges.size();
+  result.version = save_road_network(db, req.network, net,
+                                     {"roads", req.network.id, load::file_name(req.file), fp, result.rows,
+                                      seconds_since(start)});
+  result.seconds = seconds_since(start);
+  result.summary = std::to_string(net.nodes.size()) + " nodes, " + std::to_string(net.edges.size()) + " edges, " +
+                   std::to_string(net.ways.size()) + " ways (of " + std::to_string(stats.osm_ways) + " OSM ways)";
+  return result;
+}
+
+}  // namespace tourmap::store

@@ -1,0 +1,54 @@
+#pragma once
+// Imports: load a source with the core loaders, then write it in one transaction. A file that
+// fails to load or to store changes nothing. Re-importing unchanged files is a no-op unless forced.
+
+#include "repo.hpp"
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace tourmap::store {
+
+enum class MetroFormat { loom, station_csvs, line_csv };
+// "loom" | "station-csvs" | "line-csv"; throws std::invalid_argument otherwise.
+MetroFormat parse_metro_format(const std::string& name);
+
+struct ImportResult {
+  std::string kind;    // "metro" | "pois" | "roads"
+  std::string target;  // city or road network id
+  bool skipped = false;  // same files as the last import: nothing written
+  std::int64_t version = 0;
+  std::size_t rows = 0;   // rows written (nodes + edges + lines, POIs, or nodes + ways + edges)
+  double seconds = 0.0;
+  std::string summary;  // e.g. "98 stations, 105 edges, 5 lines"
+};
+
+struct MetroImport {
+  CityMeta city;
+  MetroFormat format = MetroFormat::loom;
+  std::vector<std::string> files;  // loom/line-csv: 1 file; station-csvs: stations, lines, connections
+  bool force = false;
+};
+ImportResult import_metro(Db& db, const MetroImport& request);
+
+struct PoiImport {
+  std::string city_id;
+  std::string file;
+  std::string default_category;
+  std::string attribution;
+  bool force = false;
+};
+ImportResult import_pois(Db& db, const PoiImport& request);
+
+struct RoadImport {
+  RoadMeta network;
+  std::string file;
+  bool force = false;
+};
+ImportResult import_roads(Db& db, const RoadImport& request);
+
+// FNV-1a 64 over the files' bytes, as hex: identifies a source version.
+std::string fingerprint_files(const std::vector<std::string>& files);
+
+}  // namespace tourmap::store

@@ -1,0 +1,33 @@
+#pragma once
+// A data manifest: which files under a data directory become which cities and road networks.
+// scripts/sample-data.json describes ../shared/data; `tourmap import manifest` runs one.
+//
+// {"cities": [{"id": "vienna", "name": "Vienna",
+//              "metro": {"format": "loom", "files": ["metro/loom_wien.json"], "attribution": "..."},
+//              "pois": {"file": "poi/x.json", "category": "sight", "attribution": "..."}}],
+//  "roads": [{"id": "monaco", "name": "Monaco", "file": "roads/monaco.osm.gz", "attribution": "..."}]}
+
+#include "importer.hpp"
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace tourmap::store {
+
+struct Manifest {
+  std::vector<MetroImport> metros;
+  std::vector<PoiImport> pois;
+  std::vector<RoadImport> roads;
+};
+
+// Parses the manifest text; relative file paths are resolved against `data_dir`.
+// Throws std::invalid_argument naming the entry and field on a malformed manifest.
+Manifest parse_manifest(const std::string& json_text, const std::string& data_dir);
+
+// Runs every import (each in its own transaction), calling `progress` after each. Throws on the
+// first failure; imports done before it stay.
+std::vector<ImportResult> run_manifest(Db& db, const Manifest& manifest, bool force,
+                                       const std::function<void(const ImportResult&)>& progress);
+
+}  // namespace tourmap::store
