@@ -76,7 +76,7 @@ void add_city_routes(Router& router, AppContext& ctx) {
     auto body = parse_json_body(req);
     if (!body.is_object()) throw ApiError(400, "invalid_parameter", "body must be a JSON object", "body");
     std::optional<geo::BBox> bbox;
-    if (body.contains("bbox")) bbox = parse_bbox(body["bbox"], "bbox");
+    if (body.contains("bbox")) bbox = parse_bbox_json(body["bbox"], "bbox");
     std::optional<geo::PolygonSet> within;
     if (body.contains("within")) within.emplace(parse_polygons(body["within"], "within"));
     std::set<std::string> categories;

@@ -45,7 +45,7 @@ geo::BBox parse_bbox(const std::string& text, const std::string& field) {
   return make_bbox(v, field);
 }
 
-geo::BBox parse_bbox(const nlohmann::json& value, const std::string& field) {
+geo::BBox parse_bbox_json(const nlohmann::json& value, const std::string& field) {
   if (!value.is_array() || value.size() != 4) throw bad(field, field + ": expected an array of 4 numbers");
   std::vector<double> v;
   for (const auto& x : value) {

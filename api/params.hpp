@@ -13,7 +13,7 @@ namespace tourmap::api {
 // bbox=min_lon,min_lat,max_lon,max_lat: four finite numbers within WGS84, min <= max.
 std::optional<geo::BBox> query_bbox(const Request& req, const std::string& name = "bbox");
 geo::BBox parse_bbox(const std::string& text, const std::string& field);
-geo::BBox parse_bbox(const nlohmann::json& value, const std::string& field);
+geo::BBox parse_bbox_json(const nlohmann::json& value, const std::string& field);
 
 // An integer parameter in [min, max]; `fallback` when absent.
 long long query_int(const Request& req, const std::string& name, long long min, long long max, long long fallback);

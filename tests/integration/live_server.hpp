@@ -1,0 +1,62 @@
+#pragma once
+// A real tourmap server for the integration tests: a fresh database with a small slice of the
+// sample data (two cities, two road networks) and a tiny web root, served on a free port.
+
+#include "http_client.hpp"
+#include "server_process.hpp"
+#include "temp_dir.hpp"
+#include "test_data.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <memory>
+#include <string>
+
+namespace tourmap::test {
+
+inline const char* kTourmapBin = TOURMAP_BIN;
+
+// The manifest the integration tests import (paths relative to the shared data directory).
+inline std::string small_manifest() {
+  return R"({"cities":[
+    {"id":"vienna","name":"Vienna","metro":{"format":"loom","files":["metro/loom_wien.json"],"attribution":"Wiener Linien"},
+     "pois":{"file":"poi/vienna_sights_SEHENSWUERDIGOGD.json","category":"sight","attribution":"Stadt Wien"}},
+    {"id":"lisbon","name":"Lisbon","metro":{"format":"line-csv","files":["metro/lisbon_metro_stations_metrodroid.csv"]}}],
+   "roads":[
+    {"id":"west-oakland","name":"West Oakland","file":"roads/West-Oakland.osm.bz2","attribution":"OSM"},
+    {"id":"monaco","name":"Monaco","file":"roads/monaco.osm.gz","attribution":"OSM"}]})";
+}
+
+class LiveServer {
+ public:
+  explicit LiveServer(const std::vector<std::string>& extra_flags = {}) {
+    dir.write("web/index.html", "<!doctype html><title>tourmap</title>");
+    dir.write("web/assets/app-abc.js", "console.log('tourmap')");
+    dir.write("outside.txt", "secret");
+    auto manifest = dir.write("manifest.json", small_manifest());
+    auto imported = run_command({kTourmapBin, "import", "manifest", manifest, "--data-dir", data_dir(), "--db", db()});
+    if (imported.exit_code != 0) throw std::runtime_error("import failed: " + imported.output);
+    std::vector<std::string> flags = {"--web-root", dir.file("web"), "--access-log", "off"};
+    flags.insert(flags.end(), extra_flags.begin(), extra_flags.end());
+    server = std::make_unique<ServerProcess>(kTourmapBin, db(), flags);
+  }
+
+  std::string db() const { return dir.file("t.db"); }
+  unsigned short port() const { return server->port(); }
+  HttpResult get(const std::string& target, const std::map<std::string, std::string>& headers = {}) const {
+    return http_get(port(), target, headers);
+  }
+  nlohmann::json get_json(const std::string& target) const {
+    auto r = get(target);
+    if (r.status != 200) throw std::runtime_error(target + " -> " + std::to_string(r.status) + " " + r.body);
+    return nlohmann::json::parse(r.body);
+  }
+
+  TempDir dir;
+  std::unique_ptr<ServerProcess> server;
+};
+
+// The error object of a 4xx/5xx JSON body.
+inline nlohmann::json error_of(const HttpResult& r) { return nlohmann::json::parse(r.body).at("error"); }
+
+}  // namespace tourmap::test

@@ -1,0 +1,95 @@
+#include "http_client.hpp"
+
+#include <boost/asio/connect.hpp>
+#include <boost/asio/io_context.hpp>
+#include <boost/asio/ip/tcp.hpp>
+#include <boost/beast/core.hpp>
+#include <boost/beast/http.hpp>
+#include <boost/beast/websocket.hpp>
+
+#include <cctype>
+#include <stdexcept>
+
+namespace tourmap::test {
+
+namespace beast = boost::beast;
+namespace http = beast::http;
+namespace net = boost::asio;
+using tcp = net::ip::tcp;
+
+HttpResult http_request(unsigned short port, const std::string& method, const std::string& raw_target,
+                        const std::map<std::string, std::string>& headers, const std::string& body) {
+  net::io_context ioc;
+  beast::tcp_stream stream(ioc);
+  stream.connect(tcp::endpoint(net::ip::make_address("127.0.0.1"), port));
+  stream.expires_after(std::chrono::seconds(60));
+  http::request<http::string_body> req{http::string_to_verb(method), raw_target, 11};
+  req.set(http::field::host, "127.0.0.1");
+  for (const auto& [k, v] : headers) req.set(k, v);
+  req.body() = body;
+  if (!body.empty() || method == "POST") req.prepare_payload();
+  http::write(stream, req);
+
+  beast::flat_buffer buffer;
+  http::response_parser<http::string_body> parser;
+  parser.body_limit(256u << 20);
+  if (method == "HEAD") parser.skip(true);
+  http::read(stream, buffer, parser);
+  auto res = parser.release();
+  HttpResult out;
+  out.status = static_cast<int>(res.result_int());
+  for (const auto& field : res) {
+    std::string name(field.name_string());
+    for (auto& c : name) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    out.headers[name] = std::string(field.value());
+  }
+  out.body = std::move(res.body());
+  beast::error_code ec;
+  stream.socket().shutdown(tcp::socket::shutdown_both, ec);
+  return out;
+}
+
+std::string raw_exchange(unsigned short port, const std::string& bytes, std::chrono::milliseconds timeout) {
+  net::io_context ioc;
+  beast::tcp_stream stream(ioc);
+  stream.connect(tcp::endpoint(net::ip::make_address("127.0.0.1"), port));
+  stream.expires_after(timeout);
+  beast::error_code ec;
+  net::write(stream, net::buffer(bytes), ec);
+  std::string out;
+  char buf[4096];
+  while (!ec) {
+    auto n = stream.read_some(net::buffer(buf), ec);
+    out.append(buf, n);
+  }
+  return out;
+}
+
+struct WsClient::Impl {
+  net::io_context ioc;
+  beast::websocket::stream<beast::tcp_stream> ws{ioc};
+};
+
+WsClient::WsClient(unsigned short port, const std::string& path) : impl_(std::make_unique<Impl>()) {
+  beast::get_lowest_layer(impl_->ws).connect(tcp::endpoint(net::ip::make_address("127.0.0.1"), port));
+  impl_->ws.handshake("127.0.0.1:" + std::to_string(port), path);
+}
+
+WsClient::~WsClient() {
+  beast::error_code ec;
+  impl_->ws.close(beast::websocket::close_code::normal, ec);
+}
+
+void WsClient::send(const std::string& text) {
+  impl_->ws.text(true);
+  impl_->ws.write(net::buffer(text));
+}
+
+std::string WsClient::receive(std::chrono::milliseconds timeout) {
+  beast::get_lowest_layer(impl_->ws).expires_after(timeout);
+  beast::flat_buffer buffer;
+  impl_->ws.read(buffer);
+  return beast::buffers_to_string(buffer.data());
+}
+
+}  // namespace tourmap::test

@@ -1,0 +1,65 @@
+#include "server/gzip.hpp"
+#include "server/respond.hpp"
+
+#include <gtest/gtest.h>
+
+namespace tourmap::server {
+namespace {
+
+TEST(Gzip, RoundTripsAndNegotiates) {
+  std::string text(5000, 'a');
+  auto packed = gzip_compress(text);
+  EXPECT_LT(packed.size(), 200u);
+  EXPECT_EQ(gzip_decompress(packed), text);
+  EXPECT_TRUE(accepts_gzip("gzip, deflate, br"));
+  EXPECT_TRUE(accepts_gzip("br;q=1.0, gzip;q=0.8"));
+  EXPECT_TRUE(accepts_gzip("*"));
+  EXPECT_FALSE(accepts_gzip("gzip;q=0"));
+  EXPECT_FALSE(accepts_gzip("gzip;q=0.000"));
+  EXPECT_FALSE(accepts_gzip("deflate"));
+  EXPECT_FALSE(accepts_gzip(""));
+}
+
+TEST(Respond, EtagAnd304) {
+  Config config;
+  api::Response r = api::json_response({{"a", std::string(2000, 'x')}});
+  r.cacheable = true;
+  RequestFacts facts;
+  auto first = finish_response(r, facts, config);
+  auto etag = std::string(first[http::field::etag]);
+  ASSERT_FALSE(etag.empty());
+  EXPECT_EQ(first[http::field::cache_control], "no-cache");
+  facts.if_none_match = "\"other\", " + etag;
+  auto second = finish_response(r, facts, config);
+  EXPECT_EQ(second.result(), http::status::not_modified);
+  EXPECT_TRUE(second.body().empty());
+  EXPECT_TRUE(etag_matches("*", etag));
+  EXPECT_TRUE(etag_matches(etag.substr(2), etag));  // strong form of the same tag
+}
+
+TEST(Respond, GzipOnlyWhenAcceptedAndLargeEnough) {
+  Config config;
+  RequestFacts facts;
+  facts.accept_encoding = "gzip";
+  auto big = finish_response(api::json_response({{"a", std::string(5000, 'x')}}), facts, config);
+  EXPECT_EQ(big[http::field::content_encoding], "gzip");
+  EXPECT_EQ(big[http::field::vary], "Accept-Encoding");
+  EXPECT_NE(gzip_decompress(big.body()).find("xxxx"), std::string::npos);
+  auto small = finish_response(api::json_response({{"a", 1}}), facts, config);
+  EXPECT_EQ(small[http::field::content_encoding], "");
+  facts.accept_encoding = "";
+  auto plain = finish_response(api::json_response({{"a", std::string(5000, 'x')}}), facts, config);
+  EXPECT_EQ(plain[http::field::content_encoding], "");
+}
+
+TEST(Respond, HeadKeepsLengthWithoutBody) {
+  Config config;
+  RequestFacts facts;
+  facts.method = http::verb::head;
+  auto res = finish_response(api::json_response({{"a", 1}}), facts, config);
+  EXPECT_TRUE(res.body().empty());
+  EXPECT_EQ(res[http::field::content_length], "7");
+}
+
+}  // namespace
+}  // namespace tourmap::server

@@ -1,0 +1,183 @@
+#include "store/importer.hpp"
+#include "store/manifest.hpp"
+#include "store/migrate.hpp"
+#include "store/repo.hpp"
+#include "temp_dir.hpp"
+#include "test_data.hpp"
+
+#include "load/load_error.hpp"
+
+#include <gtest/gtest.h>
+
+namespace tourmap::store {
+namespace {
+
+using test::data_file;
+
+class RepoTest : public ::testing::Test {
+ protected:
+  RepoTest() : db(dir.file("t.db")) { migrate(db); }
+
+  std::int64_t count(const std::string& table) {
+    auto st = db.prepare("SELECT COUNT(*) FROM " + table);
+    st.step();
+    return st.int64(0);
+  }
+
+  test::TempDir dir;
+  Db db;
+};
+
+model::MetroNetwork tiny_network() {
+  model::MetroNetwork net;
+  net.lines = {{"l1", "Red", "ff0000"}};
+  net.nodes = {{"a", "A", "Alpha", {16.0, 48.0}}, {"j", "", "", {16.05, 48.0}}, {"b", "B", "Beta", {16.1, 48.1}}};
+  net.edges = {{0, 1, {0}, {{16.0, 48.0}, {16.05, 48.0}}}, {1, 2, {0}, {{16.05, 48.0}, {16.08, 48.05}, {16.1, 48.1}}}};
+  return net;
+}
+
+TEST_F(RepoTest, CityRoundTrip) {
+  auto v1 = save_city_metro(db, {"tiny", "Tiny Town", "test data"}, tiny_network(), {"", "", "tiny.json", "f1", 7, 0.1});
+  model::Poi poi;
+  poi.id = "p1";
+  poi.name = "Museum";
+  poi.pos = {16.02, 48.01};
+  poi.rank = 2.0;
+  poi.image_url = "http://img";
+  auto v2 = save_city_pois(db, "tiny", "poi data", {poi}, {"", "", "pois.csv", "f2", 1, 0.1});
+  EXPECT_GT(v2, v1);
+
+  auto city = load_city(db, "tiny");
+  ASSERT_TRUE(city);
+  EXPECT_EQ(city->info.name, "Tiny Town");
+  EXPECT_EQ(city->info.version, v2);
+  EXPECT_EQ(city->info.station_count, 2u);
+  EXPECT_EQ(city->info.poi_count, 1u);
+  EXPECT_EQ(city->info.attribution, "test data");
+  EXPECT_EQ(city->info.poi_attribution, "poi data");
+  EXPECT_NEAR(city->info.projection.origin.lon, 16.05, 1e-12);
+  ASSERT_EQ(city->metro.edges.size(), 2u);
+  EXPECT_EQ(city->metro.edges[1].geometry.size(), 3u);
+  EXPECT_EQ(city->metro.edges[1].geometry[1].lat, 48.05);
+  EXPECT_FALSE(city->metro.nodes[1].is_station());
+  ASSERT_EQ(city->pois.size(), 1u);
+  EXPECT_EQ(city->pois[0].rank, 2.0);
+  EXPECT_FALSE(city->pois[0].popularity.has_value());
+
+  // Re-importing the metro keeps the POIs.
+  save_city_metro(db, {"tiny", "Tiny Town", "test data"}, tiny_network(), {"", "", "tiny.json", "f3", 7, 0.1});
+  EXPECT_EQ(load_city(db, "tiny")->pois.size(), 1u);
+  EXPECT_TRUE(delete_city(db, "tiny"));
+  EXPECT_EQ(count("pois"), 0);  // cascades
+  EXPECT_EQ(count("metro_nodes"), 0);
+  EXPECT_FALSE(delete_city(db, "tiny"));
+}
+
+TEST_F(RepoTest, FailedWriteChangesNothing) {
+  save_city_metro(db, {"tiny", "Tiny Town", ""}, tiny_network(), {"", "", "tiny.json", "f1", 7, 0.1});
+  auto before_nodes = count("metro_nodes");
+  auto before_imports = count("imports");
+  // Make the third node insert fail half-way through a re-import.
+  db.exec("CREATE TEMP TRIGGER boom BEFORE INSERT ON metro_nodes WHEN NEW.id = 'b' "
+          "BEGIN SELECT RAISE(ABORT, 'injected failure'); END");
+  auto net = tiny_network();
+  net.nodes[0].name = "Changed";
+  EXPECT_THROW(save_city_metro(db, {"tiny", "Renamed", ""}, net, {"", "", "tiny.json", "f2", 7, 0.1}), DbError);
+  db.exec("DROP TRIGGER boom");
+  EXPECT_EQ(count("metro_nodes"), before_nodes);
+  EXPECT_EQ(count("imports"), before_imports);
+  auto city = load_city(db, "tiny");
+  EXPECT_EQ(city->info.name, "Tiny Town");
+  EXPECT_EQ(city->metro.nodes[0].name, "Alpha");
+}
+
+TEST_F(RepoTest, PoisNeedAnExistingCity) {
+  EXPECT_THROW(save_city_pois(db, "nowhere", "", {}, {}), DbError);
+  EXPECT_EQ(count("imports"), 0);
+}
+
+TEST_F(RepoTest, RoadNetworkRoundTripRebuildsWays) {
+  model::RoadNetwork net;
+  net.nodes = {{1, {7.0, 43.0}}, {2, {7.001, 43.0}}, {3, {7.002, 43.001}}, {4, {7.0, 43.002}}};
+  net.ways = {{100, "residential", "Rue A", {0, 1, 2}}, {101, "footway", "", {2, 3}}};
+  net.edges = model::edges_of(net.ways);
+  auto version = save_road_network(db, {"mini", "Mini", "osm"}, net, {"", "", "mini.osm", "f", 9, 0.1});
+  auto info = find_road_network(db, "mini");
+  ASSERT_TRUE(info);
+  EXPECT_EQ(info->version, version);
+  EXPECT_EQ(info->edge_count, 3u);
+  auto loaded = load_road_network(db, "mini");
+  ASSERT_TRUE(loaded);
+  ASSERT_EQ(loaded->ways.size(), 2u);
+  EXPECT_EQ(loaded->ways[0].nodes, (std::vector<std::uint32_t>{0, 1, 2}));
+  EXPECT_EQ(loaded->ways[1].highway, "footway");
+  EXPECT_EQ(loaded->nodes[3].osm_id, 4);
+  EXPECT_EQ(loaded->edges.size(), 3u);
+  EXPECT_EQ(list_road_networks(db).size(), 1u);
+  EXPECT_TRUE(delete_road_network(db, "mini"));
+  EXPECT_EQ(count("road_edges"), 0);
+}
+
+TEST_F(RepoTest, ResultCache) {
+  EXPECT_FALSE(cache_get(db, "k"));
+  cache_put(db, "k", "layout", {"application/json", std::string("{\"a\":1}\0x", 9)});
+  auto hit = cache_get(db, "k");
+  ASSERT_TRUE(hit);
+  EXPECT_EQ(hit->body.size(), 9u);  // binary-safe
+  EXPECT_EQ(cache_purge(db, "other"), 0u);
+  EXPECT_EQ(cache_purge(db, "layout"), 1u);
+  EXPECT_FALSE(cache_get(db, "k"));
+}
+
+TEST_F(RepoTest, ImportSkipsUnchangedFilesUnlessForced) {
+  MetroImport req{{"freiburg", "Freiburg", ""}, MetroFormat::loom, {data_file("metro/loom_freiburg.json")}, false};
+  auto first = import_metro(db, req);
+  EXPECT_FALSE(first.skipped);
+  EXPECT_EQ(first.rows, 76u + 79u + 5u);
+  auto second = import_metro(db, req);
+  EXPECT_TRUE(second.skipped);
+  EXPECT_EQ(second.version, first.version);
+  req.force = true;
+  auto third = import_metro(db, req);
+  EXPECT_FALSE(third.skipped);
+  EXPECT_GT(third.version, first.version);
+}
+
+TEST_F(RepoTest, BadFileImportChangesNothing) {
+  import_metro(db, {{"freiburg", "Freiburg", ""}, MetroFormat::loom, {data_file("metro/loom_freiburg.json")}, false});
+  auto imports = count("imports");
+  auto csv = dir.write("bad.csv", "line_id,seq_on_line,name,lat\nA,1,X,38.7\n");
+  EXPECT_THROW(import_metro(db, {{"freiburg", "Freiburg", ""}, MetroFormat::line_csv, {csv}, true}), load::LoadError);
+  EXPECT_EQ(count("imports"), imports);
+  EXPECT_EQ(load_city(db, "freiburg")->metro.nodes.size(), 76u);
+}
+
+TEST_F(RepoTest, ImportValidatesIds) {
+  EXPECT_THROW(import_metro(db, {{"Bad Id", "X", ""}, MetroFormat::loom, {data_file("metro/loom_freiburg.json")}, false}),
+               std::invalid_argument);
+  EXPECT_THROW(import_pois(db, {"ghost", data_file("poi/berlin_museums_osm_r360.js"), "", "", false}),
+               std::invalid_argument);
+  EXPECT_TRUE(is_valid_id("north-bayreuth"));
+  EXPECT_FALSE(is_valid_id("-x"));
+  EXPECT_FALSE(is_valid_id("../x"));
+}
+
+TEST(Manifest, ParsesAndResolvesPaths) {
+  auto m = parse_manifest(R"({"cities":[{"id":"v","name":"V","metro":{"format":"loom","files":["metro/a.json"]},
+                               "pois":{"file":"/abs/p.csv","category":"sight"}}],
+                              "roads":[{"id":"r","name":"R","file":"roads/r.osm"}]})",
+                          "/data");
+  ASSERT_EQ(m.metros.size(), 1u);
+  EXPECT_EQ(m.metros[0].files[0], "/data/metro/a.json");
+  ASSERT_EQ(m.pois.size(), 1u);
+  EXPECT_EQ(m.pois[0].file, "/abs/p.csv");
+  EXPECT_EQ(m.pois[0].default_category, "sight");
+  EXPECT_EQ(m.roads[0].file, "/data/roads/r.osm");
+  EXPECT_THROW(parse_manifest("{", "/d"), std::invalid_argument);
+  EXPECT_THROW(parse_manifest(R"({"cities":[{"id":"v","name":"V"}]})", "/d"), std::invalid_argument);
+  EXPECT_THROW(parse_manifest(R"({"cities":[{"id":"v","name":"V","metro":{"format":"kml","files":[]}}]})", "/d"),
+               std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace tourmap::store
