@@ -21,6 +21,10 @@ nlohmann::json attribution_list(const model::CityInfo& info) {
   return out;
 }
 
+nlohmann::json projection_json(const geo::LocalProjection& proj) {
+  return {{"kind", "transverse_mercator"}, {"lon0", proj.origin.lon}, {"lat0", proj.origin.lat}, {"k0", 1.0}};
+}
+
 }  // namespace
 
 nlohmann::json position(geo::LonLat p) { return nlohmann::json::array({round7(p.lon), round7(p.lat)}); }
@@ -35,10 +39,7 @@ nlohmann::json city_summary(const model::CityInfo& info) {
           {"name", info.name},
           {"bbox", bbox_json(info.bbox)},
           {"center", position(info.bbox.center())},
-          {"projection", {{"kind", "transverse_mercator"},
-                          {"lon0", info.projection.origin.lon},
-                          {"lat0", info.projection.origin.lat},
-                          {"k0", 1.0}}},
+          {"projection", projection_json(info.projection)},
           {"counts", {{"stations", info.station_count},
                       {"edges", info.edge_count},
                       {"lines", info.line_count},
@@ -52,10 +53,7 @@ nlohmann::json road_network_summary(const model::RoadNetworkInfo& info) {
           {"name", info.name},
           {"bbox", bbox_json(info.bbox)},
           {"center", position(info.bbox.center())},
-          {"projection", {{"kind", "transverse_mercator"},
-                          {"lon0", info.projection.origin.lon},
-                          {"lat0", info.projection.origin.lat},
-                          {"k0", 1.0}}},
+          {"projection", projection_json(info.projection)},
           {"counts", {{"nodes", info.node_count}, {"ways", info.way_count}, {"edges", info.edge_count}}},
           {"version", info.version},
           {"attribution", nlohmann::json::array({info.attribution})}};

@@ -151,11 +151,7 @@ std::optional<std::int64_t> city_version(Db& db, const std::string& id) {
 
 std::optional<model::City> load_city(Db& db, const std::string& id) {
   // One read transaction so the city is consistent even while an import commits.
-  db.exec("BEGIN");
-  struct EndRead {
-    Db& db;
-    ~EndRead() { try { db.exec("COMMIT"); } catch (...) {} }
-  } end_read{db};
+  ReadTransaction read(db);
 
   auto info = find_city(db, id);
   if (!info) return std::nullopt;

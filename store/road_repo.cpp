@@ -88,16 +88,7 @@ std::optional<std::int64_t> road_network_version(Db& db, const std::string& id) 
 }
 
 std::optional<model::RoadNetwork> load_road_network(Db& db, const std::string& id) {
-  db.exec("BEGIN");  // consistent snapshot while an import may commit
-  struct EndRead {
-    Db& db;
-    ~EndRead() {
-      try {
-        db.exec("COMMIT");
-      } catch (...) {
-      }
-    }
-  } end_read{db};
+  ReadTransaction read(db);  // consistent snapshot while an import may commit
   if (!road_network_version(db, id)) return std::nullopt;
 
   model::RoadNetwork net;

@@ -121,6 +121,13 @@ Transaction::~Transaction() {
   }
 }
 
+ReadTransaction::~ReadTransaction() {
+  try {
+    db_.exec("COMMIT");
+  } catch (...) {  // ending a read cannot lose data; SQLite ends it on close otherwise
+  }
+}
+
 void Transaction::commit() {
   db_.exec("COMMIT");
   done_ = true;

@@ -93,4 +93,16 @@ class Transaction {
   bool done_ = false;
 };
 
+// BEGIN (deferred) for a consistent multi-statement read; COMMIT on destruction.
+class ReadTransaction {
+ public:
+  explicit ReadTransaction(Db& db) : db_(db) { db_.exec("BEGIN"); }
+  ~ReadTransaction();
+  ReadTransaction(const ReadTransaction&) = delete;
+  ReadTransaction& operator=(const ReadTransaction&) = delete;
+
+ private:
+  Db& db_;
+};
+
 }  // namespace tourmap::store

@@ -1,29 +1,13 @@
 #include "load/csv.hpp"
 
 #include "load/load_error.hpp"
+#include "load/strings.hpp"
 
 #include <cctype>
 #include <charconv>
 #include <cmath>
 
 namespace tourmap::load {
-namespace {
-
-bool iequals(std::string_view a, std::string_view b) {
-  if (a.size() != b.size()) return false;
-  for (std::size_t i = 0; i < a.size(); ++i)
-    if (std::tolower(static_cast<unsigned char>(a[i])) != std::tolower(static_cast<unsigned char>(b[i])))
-      return false;
-  return true;
-}
-
-std::string_view trim(std::string_view s) {
-  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
-  while (!s.empty() && (s.back() == ' ' || s.back() == '\t')) s.remove_suffix(1);
-  return s;
-}
-
-}  // namespace
 
 std::optional<std::size_t> CsvTable::find_column(std::span<const std::string_view> names) const {
   for (auto name : names)

@@ -1,6 +1,7 @@
 #include "load/json_fields.hpp"
 
 #include "load/load_error.hpp"
+#include "load/strings.hpp"
 
 #include <cctype>
 #include <charconv>
@@ -8,14 +9,6 @@
 
 namespace tourmap::load {
 namespace {
-
-bool iequals(std::string_view a, std::string_view b) {
-  if (a.size() != b.size()) return false;
-  for (std::size_t i = 0; i < a.size(); ++i)
-    if (std::tolower(static_cast<unsigned char>(a[i])) != std::tolower(static_cast<unsigned char>(b[i])))
-      return false;
-  return true;
-}
 
 const nlohmann::json* find_key(const nlohmann::json& obj, std::string_view key) {
   if (!obj.is_object()) return nullptr;

@@ -1,0 +1,190 @@
+// Import benchmark: every file the sample manifest imports from the shared data directory,
+// parsed alone (the core loader: the baseline) and imported (loader + one SQLite transaction
+// into a fresh database). Prints Google Benchmark's table, then a summary:
+// file, nodes/edges/stations/POIs, seconds, rows/s, and import time relative to parse time.
+//
+//   build/bench/import_bench [--data-dir DIR] [google benchmark flags]
+
+#include "load/file.hpp"
+#include "load/metro_load.hpp"
+#include "load/osm_roads.hpp"
+#include "load/poi_load.hpp"
+#include "store/importer.hpp"
+#include "store/manifest.hpp"
+#include "store/migrate.hpp"
+
+#include <benchmark/benchmark.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace {
+
+using namespace tourmap;
+using Clock = std::chrono::steady_clock;
+
+struct Counts {
+  std::size_t nodes = 0, edges = 0, stations = 0, pois = 0, rows = 0;
+};
+
+struct Case {
+  std::string file;  // as named in the summary
+  std::string kind;  // metro | pois | roads
+  std::function<Counts()> parse;
+  std::function<void(store::Db&)> import;
+  std::function<void(store::Db&)> prepare;  // what must exist first (the city, for POIs)
+};
+
+struct Measured {
+  Counts counts;
+  double parse_s = 0, import_s = 0;
+  int parse_runs = 0, import_runs = 0;
+};
+std::map<std::string, Measured> results;
+
+Counts metro_counts(const model::MetroNetwork& net) {
+  return {net.nodes.size(), net.edges.size(), net.station_count(), 0, net.nodes.size() + net.edges.size() + net.lines.size()};
+}
+
+model::MetroNetwork load_metro(const store::MetroImport& m) {
+  switch (m.format) {
+    case store::MetroFormat::loom: return load::load_metro_loom(m.files[0]);
+    case store::MetroFormat::station_csvs: return load::load_metro_station_csvs(m.files[0], m.files[1], m.files[2]);
+    case store::MetroFormat::line_csv: return load::load_metro_line_csv(m.files[0]);
+  }
+  return {};
+}
+
+std::vector<Case> cases_from(const store::Manifest& manifest) {
+  std::vector<Case> cases;
+  std::map<std::string, store::MetroImport> metro_by_city;
+  for (auto m : manifest.metros) {
+    m.force = true;
+    metro_by_city[m.city.id] = m;
+    std::string name;
+    for (const auto& f : m.files) {
+      if (!name.empty()) name += '+';
+      name += load::file_name(f);
+    }
+    cases.push_back({name, "metro", [m] { return metro_counts(load_metro(m)); },
+                     [m](store::Db& db) { store::import_metro(db, m); }, nullptr});
+  }
+  for (auto p : manifest.pois) {
+    p.force = true;
+    auto city = metro_by_city.at(p.city_id);
+    cases.push_back({load::file_name(p.file), "pois",
+                     [p] {
+                       auto pois = load::load_pois(p.file, {p.default_category});
+                       return Counts{0, 0, 0, pois.size(), pois.size()};
+                     },
+                     [p](store::Db& db) { store::import_pois(db, p); },
+                     [city](store::Db& db) { store::import_metro(db, city); }});
+  }
+  for (auto r : manifest.roads) {
+    r.force = true;
+    cases.push_back({load::file_name(r.file), "roads",
+                     [r] {
+                       auto net = load::load_osm_roads(r.file);
+                       return Counts{net.nodes.size(), net.edges.size(), 0, 0,
+                                     net.nodes.size() + net.ways.size() + net.edges.size()};
+                     },
+                     [r](store::Db& db) { store::import_roads(db, r); }, nullptr});
+  }
+  return cases;
+}
+
+void bench_parse(benchmark::State& state, const Case& c) {
+  auto& m = results[c.file];
+  for (auto _ : state) {
+    auto start = Clock::now();
+    m.counts = c.parse();
+    m.parse_s += std::chrono::duration<double>(Clock::now() - start).count();
+    ++m.parse_runs;
+  }
+  state.counters["rows"] = static_cast<double>(m.counts.rows);
+  state.counters["rows/s"] = benchmark::Counter(static_cast<double>(m.counts.rows), benchmark::Counter::kIsRate);
+}
+
+void bench_import(benchmark::State& state, const Case& c, const std::string& dir) {
+  auto& m = results[c.file];
+  int run = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    auto path = dir + "/bench-" + std::to_string(run++) + ".db";
+    std::filesystem::remove(path);
+    std::filesystem::remove(path + "-wal");
+    std::filesystem::remove(path + "-shm");
+    {
+      store::Db db(path);
+      store::migrate(db);
+      if (c.prepare) c.prepare(db);
+      state.ResumeTiming();
+      auto start = Clock::now();
+      c.import(db);
+      m.import_s += std::chrono::duration<double>(Clock::now() - start).count();
+      ++m.import_runs;
+      state.PauseTiming();
+    }
+    std::filesystem::remove(path);
+    std::filesystem::remove(path + "-wal");
+    std::filesystem::remove(path + "-shm");
+    state.ResumeTiming();
+  }
+  state.counters["rows"] = static_cast<double>(m.counts.rows);
+  state.counters["rows/s"] = benchmark::Counter(static_cast<double>(m.counts.rows), benchmark::Counter::kIsRate);
+}
+
+void print_summary(const std::vector<Case>& cases) {
+  std::printf("\nImport summary (mean per run; baseline = parse only, same run)\n\n");
+  std::printf("| file | kind | nodes | edges | stations | POIs | rows | parse s | import s | rows/s (import) | import/parse |\n");
+  std::printf("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+  for (const auto& c : cases) {
+    const auto& m = results[c.file];
+    if (!m.parse_runs || !m.import_runs) continue;
+    double parse = m.parse_s / m.parse_runs, import = m.import_s / m.import_runs;
+    std::printf("| %s | %s | %zu | %zu | %zu | %zu | %zu | %.4f | %.4f | %.0f | %.2fx |\n", c.file.c_str(),
+                c.kind.c_str(), m.counts.nodes, m.counts.edges, m.counts.stations, m.counts.pois, m.counts.rows, parse,
+                import, m.counts.rows / import, import / parse);
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string data_dir = TOURMAP_DEFAULT_DATA_DIR;
+  if (const char* env = std::getenv("TOURMAP_DATA_DIR")) data_dir = env;
+  std::vector<char*> args;
+  for (int i = 0; i < argc; ++i) {
+    std::string a = argv[i];
+    if (a == "--data-dir" && i + 1 < argc) {
+      data_dir = argv[++i];
+      continue;
+    }
+    args.push_back(argv[i]);
+  }
+  int bargc = static_cast<int>(args.size());
+  benchmark::Initialize(&bargc, args.data());
+
+  auto manifest = store::parse_manifest(load::read_file(TOURMAP_MANIFEST), data_dir);
+  auto cases = cases_from(manifest);
+  auto tmp = std::filesystem::temp_directory_path() / ("tourmap-bench-" + std::to_string(getpid()));
+  std::filesystem::create_directories(tmp);
+  for (const auto& c : cases) {
+    benchmark::RegisterBenchmark(("parse/" + c.file).c_str(), [&c](benchmark::State& s) { bench_parse(s, c); })
+        ->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark(("import/" + c.file).c_str(),
+                                 [&c, dir = tmp.string()](benchmark::State& s) { bench_import(s, c, dir); })
+        ->Unit(benchmark::kMillisecond);
+  }
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  print_summary(cases);
+  std::filesystem::remove_all(tmp);
+  return 0;
+}
