@@ -1,0 +1,93 @@
+import type {
+  CityDetail,
+  CitySummary,
+  MetroCollection,
+  PoiCollection,
+  PoiFeature,
+  RoadCollection,
+  RoadNetworkSummary,
+} from './types';
+
+const API_ROOT = '/api/v1';
+/** The server's maximum page size for POIs. */
+const POI_PAGE = 10000;
+
+/** A failed request: an HTTP error with the API's error envelope, or no answer at all (status 0). */
+export class ApiError extends Error {
+  constructor(
+    readonly status: number,
+    readonly code: string,
+    message: string,
+    readonly field?: string,
+  ) {
+    super(message);
+    this.name = 'ApiError';
+  }
+}
+
+export function isAbort(error: unknown): boolean {
+  return error instanceof DOMException && error.name === 'AbortError';
+}
+
+async function errorFrom(response: Response): Promise<ApiError> {
+  try {
+    const body = (await response.json()) as { error?: { code?: string; message?: string; field?: string } };
+    if (body.error?.message) {
+      return new ApiError(response.status, body.error.code ?? 'error', body.error.message, body.error.field ?? undefined);
+    }
+  } catch {
+    // Not the JSON error envelope (a proxy's HTML page, say): fall through to the status line.
+  }
+  return new ApiError(response.status, 'http_error', `${response.status} ${response.statusText || 'error'}`);
+}
+
+async function getJson<T>(path: string, signal?: AbortSignal): Promise<T> {
+  let response: Response;
+  try {
+    // no-cache: revalidate with the ETag every time, so data imported a moment ago is never
+    // hidden behind the API's max-age.
+    response = await fetch(API_ROOT + path, { signal, cache: 'no-cache', headers: { Accept: 'application/json' } });
+  } catch (error) {
+    if (isAbort(error)) throw error;
+    throw new ApiError(0, 'network', 'The tourmap server cannot be reached. Check your connection and try again.');
+  }
+  if (!response.ok) throw await errorFrom(response);
+  return (await response.json()) as T;
+}
+
+const segment = encodeURIComponent;
+
+export function fetchCities(signal?: AbortSignal): Promise<CitySummary[]> {
+  return getJson<{ cities: CitySummary[] }>('/cities', signal).then((body) => body.cities);
+}
+
+export function fetchCity(id: string, signal?: AbortSignal): Promise<CityDetail> {
+  return getJson<CityDetail>(`/cities/${segment(id)}`, signal);
+}
+
+export function fetchMetro(id: string, signal?: AbortSignal): Promise<MetroCollection> {
+  return getJson<MetroCollection>(`/cities/${segment(id)}/metro`, signal);
+}
+
+/** Every POI of the city, following the server's pagination. */
+export async function fetchPois(id: string, signal?: AbortSignal): Promise<PoiCollection> {
+  const first = await getJson<PoiCollection>(`/cities/${segment(id)}/pois?limit=${POI_PAGE}`, signal);
+  const features: PoiFeature[] = [...first.features];
+  while (first.returned > 0 && features.length < first.matched) {
+    const page = await getJson<PoiCollection>(
+      `/cities/${segment(id)}/pois?limit=${POI_PAGE}&offset=${features.length}`,
+      signal,
+    );
+    if (page.returned === 0) break;
+    features.push(...page.features);
+  }
+  return { ...first, features, returned: features.length };
+}
+
+export function fetchRoadNetworks(signal?: AbortSignal): Promise<RoadNetworkSummary[]> {
+  return getJson<{ roads: RoadNetworkSummary[] }>('/roads', signal).then((body) => body.roads);
+}
+
+export function fetchRoads(id: string, signal?: AbortSignal): Promise<RoadCollection> {
+  return getJson<RoadCollection>(`/roads/${segment(id)}`, signal);
+}

@@ -1,0 +1,72 @@
+import type { LastImport, ServerEvent } from './types';
+
+export type ConnectionState = 'connecting' | 'live' | 'offline';
+
+export interface EventStreamHandlers {
+  /** Data was imported while we listened (or while we were disconnected). */
+  onCatalogChange(lastImport: LastImport | undefined): void;
+  onStateChange(state: ConnectionState): void;
+}
+
+const FIRST_RETRY_MS = 1000;
+const MAX_RETRY_MS = 30000;
+/** The server closes a WebSocket that has been silent for a few minutes: ping well before. */
+const PING_INTERVAL_MS = 45000;
+
+/**
+ * Listens to /api/v1/events and reconnects with exponential backoff (plus jitter, so many
+ * clients do not hammer a restarted server in step) whenever the socket closes.
+ */
+export class EventStream {
+  private retryMs = FIRST_RETRY_MS;
+  private catalogVersion?: number;
+
+  constructor(private readonly handlers: EventStreamHandlers) {}
+
+  start(): void {
+    this.connect();
+  }
+
+  private connect(): void {
+    const url = new URL('/api/v1/events', window.location.href);
+    url.protocol = url.protocol === 'https:' ? 'wss:' : 'ws:';
+    this.handlers.onStateChange('connecting');
+    const socket = new WebSocket(url);
+    let pinger: number | undefined;
+    socket.addEventListener('open', () => {
+      pinger = window.setInterval(() => socket.send(JSON.stringify({ type: 'ping' })), PING_INTERVAL_MS);
+    });
+    socket.addEventListener('message', (message) => this.receive(message));
+    socket.addEventListener('close', () => {
+      window.clearInterval(pinger);
+      this.handlers.onStateChange('offline');
+      this.scheduleReconnect();
+    });
+  }
+
+  private receive(message: MessageEvent): void {
+    let event: ServerEvent;
+    try {
+      event = JSON.parse(String(message.data)) as ServerEvent;
+    } catch {
+      return;
+    }
+    if (event.type === 'hello') {
+      this.retryMs = FIRST_RETRY_MS;
+      this.handlers.onStateChange('live');
+      // An import may have happened while we were disconnected.
+      const missed = this.catalogVersion !== undefined && event.catalog_version !== this.catalogVersion;
+      this.catalogVersion = event.catalog_version;
+      if (missed) this.handlers.onCatalogChange(undefined);
+    } else if (event.type === 'catalog') {
+      this.catalogVersion = event.catalog_version;
+      this.handlers.onCatalogChange(event.last_import);
+    }
+  }
+
+  private scheduleReconnect(): void {
+    const delay = this.retryMs * (0.75 + Math.random() * 0.5);
+    this.retryMs = Math.min(this.retryMs * 2, MAX_RETRY_MS);
+    window.setTimeout(() => this.connect(), delay);
+  }
+}

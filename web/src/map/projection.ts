@@ -1,0 +1,41 @@
+import type { BBox, LonLat } from '../api/types';
+
+/** Web Mercator's latitude limit: the map is square between these. */
+const MAX_LAT = 85.0511287798;
+
+/** Web Mercator (EPSG:3857) in units of the world's width: x east, y south, both in [0, 1]. */
+function mercator([lon, lat]: LonLat): [number, number] {
+  const phi = (Math.max(-MAX_LAT, Math.min(MAX_LAT, lat)) * Math.PI) / 180;
+  const sin = Math.sin(phi);
+  return [(lon + 180) / 360, 0.5 - Math.log((1 + sin) / (1 - sin)) / (4 * Math.PI)];
+}
+
+/**
+ * A map's own coordinate frame: Web Mercator moved to the bbox's north-west corner and scaled
+ * so the bbox's longer side spans `size` units. SVG coordinates then stay small numbers and
+ * keep their precision at street level, where world-sized Mercator values would not.
+ */
+export interface Frame {
+  /** Identifies the area: two frames with the same key project identically. */
+  readonly key: string;
+  readonly width: number;
+  readonly height: number;
+  project(position: LonLat): [number, number];
+}
+
+export function frameFor(bbox: BBox, size = 1000): Frame {
+  const [west, north] = mercator([bbox[0], bbox[3]]);
+  const [east, south] = mercator([bbox[2], bbox[1]]);
+  // A degenerate bbox (one station) still gets a usable scale.
+  const span = Math.max(east - west, south - north, 1e-9);
+  const scale = size / span;
+  return {
+    key: bbox.join(','),
+    width: (east - west) * scale,
+    height: (south - north) * scale,
+    project(position) {
+      const [x, y] = mercator(position);
+      return [(x - west) * scale, (y - north) * scale];
+    },
+  };
+}

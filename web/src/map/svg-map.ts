@@ -1,0 +1,232 @@
+import { select } from 'd3-selection';
+import 'd3-transition';
+import { zoom, zoomIdentity, type D3ZoomEvent, type ZoomBehavior, type ZoomTransform } from 'd3-zoom';
+import type { Frame } from './projection';
+import { svg } from './svg';
+
+/** An element drawn in screen space at a projected point, so it keeps its pixel size at any zoom. */
+export interface Anchor {
+  readonly element: SVGElement;
+  readonly x: number;
+  readonly y: number;
+  /** Pixel offset from the point (labels move beside their station). */
+  dx: number;
+  dy: number;
+}
+
+export type LayerSpace = 'world' | 'screen';
+
+/** Pixels along each side of the map covered by panels, which fitting keeps the map clear of. */
+export interface Insets {
+  top: number;
+  right: number;
+  bottom: number;
+  left: number;
+}
+
+const NO_INSETS: Insets = { top: 0, right: 0, bottom: 0, left: 0 };
+
+const FIT_PADDING_PX = 28;
+/** Zoom limits, relative to the scale that fits the whole frame. */
+const MIN_ZOOM = 0.5;
+const MAX_ZOOM = 64;
+const KEY_PAN_PX = 80;
+const KEY_ZOOM = 1.5;
+const REVEAL_MARGIN_PX = 48;
+
+function reducedMotion(): boolean {
+  return window.matchMedia('(prefers-reduced-motion: reduce)').matches;
+}
+
+/**
+ * A pannable, zoomable SVG map of one Frame. World layers scale with the zoom (their strokes
+ * are non-scaling in CSS); screen layers hold anchors, repositioned on every frame of a zoom.
+ * Wheel, drag, pinch and double-click come from d3-zoom; keys and buttons call zoomBy/fit.
+ */
+export class SvgMap {
+  readonly element: HTMLDivElement;
+  readonly svg: SVGSVGElement;
+  private readonly world: SVGGElement;
+  private readonly screen: SVGGElement;
+  private readonly zoomBehavior: ZoomBehavior<SVGSVGElement, unknown>;
+  private transform: ZoomTransform = zoomIdentity;
+  private frame?: Frame;
+  private anchors: Anchor[] = [];
+  private renderRequest = 0;
+  /** Until the user moves the map, a resize fits it again. */
+  private followsFit = true;
+  private readonly settleListeners = new Set<() => void>();
+  private insets: () => Insets = () => NO_INSETS;
+
+  constructor(label: string) {
+    this.element = document.createElement('div');
+    this.element.className = 'map';
+    this.svg = svg('svg', { class: 'map-svg', role: 'img', 'aria-label': label, tabindex: 0 });
+    this.world = svg('g', { class: 'map-world' });
+    this.screen = svg('g', { class: 'map-screen' });
+    this.svg.append(this.world, this.screen);
+    this.element.append(this.svg);
+
+    this.zoomBehavior = zoom<SVGSVGElement, unknown>()
+      .on('zoom', (event: D3ZoomEvent<SVGSVGElement, unknown>) => {
+        this.transform = event.transform;
+        if (event.sourceEvent) this.followsFit = false;
+        this.requestRender();
+      })
+      .on('end', () => this.settleListeners.forEach((listener) => listener()));
+    select(this.svg).call(this.zoomBehavior);
+    this.svg.addEventListener('keydown', (event) => this.onKey(event));
+
+    // Also fires when a hidden view is shown again.
+    new ResizeObserver(() => {
+      if (this.followsFit) this.fit(false);
+      else this.settleListeners.forEach((listener) => listener());
+    }).observe(this.element);
+  }
+
+  /**
+   * Shows a new area and fits it, unless it is the area already shown (a reload of the same
+   * city keeps the user's view).
+   */
+  setFrame(frame: Frame): void {
+    const same = this.frame?.key === frame.key;
+    this.frame = frame;
+    if (same) return;
+    // Set even when fit() cannot run yet (a hidden view): the first resize then fits.
+    this.followsFit = true;
+    this.fit(false);
+  }
+
+  /** Tells fit() which parts of the map are covered (by a legend, say); asked at every fit. */
+  setFitInsets(insets: () => Insets): void {
+    this.insets = insets;
+  }
+
+  /** A new group in the given space, drawn above the layers added before it. */
+  addLayer(name: string, space: LayerSpace): SVGGElement {
+    const layer = svg('g', { class: `layer layer-${name}` });
+    (space === 'world' ? this.world : this.screen).append(layer);
+    return layer;
+  }
+
+  /** Removes every layer and anchor. */
+  clear(): void {
+    this.world.replaceChildren();
+    this.screen.replaceChildren();
+    this.anchors = [];
+  }
+
+  anchor(element: SVGElement, [x, y]: [number, number]): Anchor {
+    const anchor: Anchor = { element, x, y, dx: 0, dy: 0 };
+    this.anchors.push(anchor);
+    this.place(anchor);
+    return anchor;
+  }
+
+  /** Screen position (CSS pixels within the map) of a projected point. */
+  toScreen(x: number, y: number): [number, number] {
+    return this.transform.apply([x, y]);
+  }
+
+  /** Screen pixels per frame unit. */
+  get scale(): number {
+    return this.transform.k;
+  }
+
+  get size(): { width: number; height: number } {
+    return { width: this.svg.clientWidth, height: this.svg.clientHeight };
+  }
+
+  /**
+   * Calls the listener when a zoom or pan ends, after fitting, and after a resize.
+   * Returns the function that stops it.
+   */
+  onSettle(listener: () => void): () => void {
+    this.settleListeners.add(listener);
+    return () => this.settleListeners.delete(listener);
+  }
+
+  requestRender(): void {
+    if (this.renderRequest) return;
+    this.renderRequest = requestAnimationFrame(() => {
+      this.renderRequest = 0;
+      this.render();
+    });
+  }
+
+  fit(animate = true): void {
+    const frame = this.frame;
+    const { width, height } = this.size;
+    if (!frame || width === 0 || height === 0) return;
+    const pad = Math.min(FIT_PADDING_PX, width / 8, height / 8);
+    let { top, right, bottom, left } = this.insets();
+    // Panels that would leave the map less than half the room are ignored: better under a panel than tiny.
+    if (left + right > width / 2) left = right = 0;
+    if (top + bottom > height / 2) top = bottom = 0;
+    const k = Math.min((width - left - right - 2 * pad) / frame.width, (height - top - bottom - 2 * pad) / frame.height);
+    this.zoomBehavior
+      .scaleExtent([k * MIN_ZOOM, k * MAX_ZOOM])
+      .translateExtent([
+        [-frame.width, -frame.height],
+        [2 * frame.width, 2 * frame.height],
+      ]);
+    const target = zoomIdentity
+      .translate(left + (width - left - right - frame.width * k) / 2, top + (height - top - bottom - frame.height * k) / 2)
+      .scale(k);
+    this.followsFit = true;
+    this.animated(animate, 350).call(this.zoomBehavior.transform, target);
+  }
+
+  zoomBy(factor: number): void {
+    this.followsFit = false;
+    this.animated(true, 200).call(this.zoomBehavior.scaleBy, factor);
+  }
+
+  panBy(dx: number, dy: number): void {
+    this.followsFit = false;
+    this.animated(true, 150).call(this.zoomBehavior.translateBy, dx / this.transform.k, dy / this.transform.k);
+  }
+
+  /** Pans so the projected point is in view, if it is not (or is near an edge). */
+  reveal(x: number, y: number): void {
+    const [sx, sy] = this.toScreen(x, y);
+    const { width, height } = this.size;
+    const margin = Math.min(REVEAL_MARGIN_PX, width / 4, height / 4);
+    if (sx >= margin && sy >= margin && sx <= width - margin && sy <= height - margin) return;
+    this.followsFit = false;
+    this.animated(true, 350).call(this.zoomBehavior.translateTo, x, y);
+  }
+
+  private animated(animate: boolean, ms: number) {
+    const target = select(this.svg);
+    return animate && !reducedMotion() ? target.transition().duration(ms) : target;
+  }
+
+  private render(): void {
+    const { x, y, k } = this.transform;
+    this.world.setAttribute('transform', `translate(${x},${y}) scale(${k})`);
+    for (const anchor of this.anchors) this.place(anchor);
+  }
+
+  private place(anchor: Anchor): void {
+    const [sx, sy] = this.transform.apply([anchor.x, anchor.y]);
+    anchor.element.setAttribute('transform', `translate(${(sx + anchor.dx).toFixed(1)},${(sy + anchor.dy).toFixed(1)})`);
+  }
+
+  private onKey(event: KeyboardEvent): void {
+    const actions: Record<string, () => void> = {
+      '+': () => this.zoomBy(KEY_ZOOM),
+      '=': () => this.zoomBy(KEY_ZOOM),
+      '-': () => this.zoomBy(1 / KEY_ZOOM),
+      '0': () => this.fit(),
+      ArrowLeft: () => this.panBy(KEY_PAN_PX, 0),
+      ArrowRight: () => this.panBy(-KEY_PAN_PX, 0),
+      ArrowUp: () => this.panBy(0, KEY_PAN_PX),
+      ArrowDown: () => this.panBy(0, -KEY_PAN_PX),
+    };
+    const action = actions[event.key];
+    if (!action || event.ctrlKey || event.metaKey || event.altKey) return;
+    event.preventDefault();
+    action();
+  }
+}

@@ -1,0 +1,250 @@
+import type { EdgeFeature, MetroCollection, MetroLine, PoiFeature, StationFeature } from '../api/types';
+import { LABEL_FONT, labelWidth, placeLabels, type Label } from '../map/labels';
+import type { Frame } from '../map/projection';
+import { polylinePath, svg } from '../map/svg';
+import type { Anchor, SvgMap } from '../map/svg-map';
+import { MapTooltip } from '../map/tooltip';
+import { lineColor } from './lines';
+
+export type MetroPick = { kind: 'station'; station: StationFeature } | { kind: 'poi'; poi: PoiFeature };
+
+const STATION_RADIUS = 4;
+const INTERCHANGE_RADIUS = 5.5;
+/** Fingers need bigger targets than a mouse pointer. */
+const TOUCH_GROWTH = 1.4;
+/**
+ * Markers shrink (down to this fraction) while the typical gap between neighbouring stations
+ * is under FULL_SIZE_GAP_PX on screen, so a whole dense network stays readable.
+ */
+const MIN_MARKER_SCALE = 0.5;
+const FULL_SIZE_GAP_PX = 30;
+const MIN_PIN_SCALE = 0.75;
+const HIGHLIGHT_PRIORITY = 1000;
+/** A map pin with its tip on the point. */
+const POI_PIN_PATH = 'M0 0C-1 -3.5 -6.5 -6.5 -6.5 -11.5A6.5 6.5 0 1 1 6.5 -11.5C6.5 -6.5 1 -3.5 0 0Z';
+
+interface Marked<F> {
+  feature: F;
+  element: SVGElement;
+  anchor: Anchor;
+}
+
+/**
+ * A city's metro network and POIs drawn on a map: edges in the world layers, station and POI
+ * markers and station labels in screen layers. Reports picks (clicks on markers, or on empty
+ * map to clear) and shows names in a tooltip on hover.
+ */
+export class MetroLayers {
+  private readonly stations = new Map<string, Marked<StationFeature> & { label: Label }>();
+  private readonly pois = new Map<string, Marked<PoiFeature>>();
+  private readonly edges: { element: SVGPathElement; lines: string[]; color: string }[] = [];
+  private readonly labels: Label[] = [];
+  private readonly lines: Map<string, MetroLine>;
+  private readonly poiLayer: SVGGElement;
+  private readonly labelLayer: SVGGElement;
+  private readonly tooltip: MapTooltip;
+  private readonly listeners = new AbortController();
+  private readonly stopSettle: () => void;
+  private selected?: SVGElement;
+  /** Median straight distance between the ends of an edge, in frame units. */
+  private readonly typicalGap: number;
+  private markerScale = 0;
+
+  constructor(
+    private readonly map: SvgMap,
+    frame: Frame,
+    metro: MetroCollection,
+    pois: PoiFeature[],
+    private readonly onPick: (pick: MetroPick | null) => void,
+  ) {
+    map.clear();
+    const lines = new Map(metro.lines.map((line) => [line.id, line]));
+    this.lines = lines;
+    const edgeFeatures = metro.features.filter((f): f is EdgeFeature => f.properties.kind === 'edge');
+    const stationFeatures = metro.features.filter((f): f is StationFeature => f.properties.kind === 'station');
+
+    this.drawEdges(map.addLayer('casing', 'world'), map.addLayer('edges', 'world'), frame, edgeFeatures, lines);
+    this.typicalGap = medianGap(edgeFeatures, frame);
+    this.poiLayer = map.addLayer('pois', 'screen');
+    const stationLayer = map.addLayer('stations', 'screen');
+    this.labelLayer = map.addLayer('labels', 'screen');
+    for (const feature of pois) this.drawPoi(feature, frame);
+    for (const feature of stationFeatures) this.drawStation(stationLayer, feature, frame, lines);
+
+    this.tooltip = new MapTooltip(map.element);
+    this.listen();
+    this.stopSettle = map.onSettle(() => this.settle());
+    this.settle();
+  }
+
+  /**
+   * Dims everything not on the line and draws the line's shared tracks in its own colour;
+   * null shows all lines again.
+   */
+  highlightLine(lineId: string | null): void {
+    const dimmed = (lines: string[]) => lineId !== null && !lines.includes(lineId);
+    const highlightColor = lineId === null ? '' : lineColor(this.lines.get(lineId));
+    for (const edge of this.edges) {
+      const off = dimmed(edge.lines);
+      edge.element.classList.toggle('dimmed', off);
+      edge.element.setAttribute('stroke', lineId === null || off ? edge.color : highlightColor);
+    }
+    for (const { feature, element, label } of this.stations.values()) {
+      const off = dimmed(feature.properties.lines);
+      element.classList.toggle('dimmed', off);
+      label.text.classList.toggle('dimmed', off);
+      // The highlighted line's stations get their names first.
+      label.priority = labelPriority(feature) + (lineId !== null && !off ? HIGHLIGHT_PRIORITY : 0);
+    }
+    this.settle();
+  }
+
+  setPoisVisible(visible: boolean): void {
+    this.poiLayer.style.display = visible ? '' : 'none';
+  }
+
+  setLabelsVisible(visible: boolean): void {
+    this.labelLayer.style.display = visible ? '' : 'none';
+  }
+
+  /** Marks a station or POI as selected, or none. */
+  select(pick: MetroPick | null): void {
+    this.selected?.classList.remove('selected');
+    this.selected = pick ? this.marked(pick)?.element : undefined;
+    if (!this.selected) return;
+    this.selected.classList.add('selected');
+    this.selected.parentNode?.append(this.selected); // on top of its neighbours
+  }
+
+  /** Moves the map to a station or POI that may be out of view. */
+  reveal(pick: MetroPick): void {
+    const marked = this.marked(pick);
+    if (marked) this.map.reveal(marked.anchor.x, marked.anchor.y);
+  }
+
+  destroy(): void {
+    this.listeners.abort();
+    this.stopSettle();
+    this.tooltip.destroy();
+    this.map.clear();
+  }
+
+  private drawEdges(
+    casingLayer: SVGGElement,
+    edgeLayer: SVGGElement,
+    frame: Frame,
+    features: EdgeFeature[],
+    lines: Map<string, MetroLine>,
+  ): void {
+    const paths: string[] = [];
+    for (const feature of features) {
+      const d = polylinePath(feature.geometry.coordinates.map((position) => frame.project(position)));
+      paths.push(d);
+      const color = lineColor(lines.get(feature.properties.lines[0] ?? ''));
+      const element = svg('path', { class: 'edge', d, stroke: color });
+      edgeLayer.append(element);
+      this.edges.push({ element, lines: feature.properties.lines, color });
+    }
+    // One white casing under all edges keeps crossing lines apart.
+    casingLayer.append(svg('path', { class: 'edge-casing', d: paths.join('') }));
+  }
+
+  private drawStation(layer: SVGGElement, feature: StationFeature, frame: Frame, lines: Map<string, MetroLine>): void {
+    const { id, name, lines: lineIds } = feature.properties;
+    const interchange = lineIds.length > 1;
+    const element = svg('circle', { class: interchange ? 'station interchange' : 'station', 'data-id': id });
+    if (!interchange) element.style.stroke = lineColor(lines.get(lineIds[0] ?? ''));
+    layer.append(element);
+    const point = frame.project(feature.geometry.coordinates);
+    const anchor = this.map.anchor(element, point);
+
+    const text = svg('text', { class: 'station-label', visibility: 'hidden' });
+    text.style.font = LABEL_FONT;
+    text.textContent = name;
+    this.labelLayer.append(text);
+    const label = { anchor: this.map.anchor(text, point), marker: anchor, text, width: labelWidth(name), priority: labelPriority(feature) };
+    this.labels.push(label);
+    this.stations.set(id, { feature, element, anchor, label });
+  }
+
+  private drawPoi(feature: PoiFeature, frame: Frame): void {
+    const element = svg('g', { class: 'poi', 'data-id': feature.properties.id });
+    const shape = svg('g', { class: 'poi-shape' });
+    shape.append(svg('path', { class: 'poi-pin', d: POI_PIN_PATH }), svg('circle', { class: 'poi-dot', cy: -11.5, r: 2.4 }));
+    element.append(shape);
+    this.poiLayer.append(element);
+    this.pois.set(feature.properties.id, { feature, element, anchor: this.map.anchor(element, frame.project(feature.geometry.coordinates)) });
+  }
+
+  private sizeMarkers(): void {
+    const gap = this.typicalGap * this.map.scale;
+    const scale = Math.max(MIN_MARKER_SCALE, Math.min(1, gap / FULL_SIZE_GAP_PX));
+    if (Math.abs(scale - this.markerScale) < 0.02) return;
+    this.markerScale = scale;
+    const growth = window.matchMedia('(pointer: coarse)').matches ? TOUCH_GROWTH : 1;
+    for (const { feature, element } of this.stations.values()) {
+      const radius = feature.properties.lines.length > 1 ? INTERCHANGE_RADIUS : STATION_RADIUS;
+      element.setAttribute('r', (radius * scale * growth).toFixed(2));
+    }
+    // Pins shrink less: they must stay recognisable as pins.
+    const pinScale = `scale(${Math.max(MIN_PIN_SCALE, scale * growth).toFixed(2)})`;
+    for (const { element } of this.pois.values()) element.firstElementChild?.setAttribute('transform', pinScale);
+  }
+
+  private marked(pick: MetroPick): Marked<StationFeature> | Marked<PoiFeature> | undefined {
+    return pick.kind === 'station' ? this.stations.get(pick.station.properties.id) : this.pois.get(pick.poi.properties.id);
+  }
+
+  /** The station or POI marker under an event, if any. */
+  private pickAt(target: EventTarget | null): { pick: MetroPick; marked: Marked<StationFeature> | Marked<PoiFeature> } | undefined {
+    const element = target instanceof Element ? target.closest('.station, .poi') : null;
+    const id = element?.getAttribute('data-id') ?? '';
+    const station = element?.classList.contains('station') ? this.stations.get(id) : undefined;
+    if (station) return { pick: { kind: 'station', station: station.feature }, marked: station };
+    const poi = element?.classList.contains('poi') ? this.pois.get(id) : undefined;
+    if (poi) return { pick: { kind: 'poi', poi: poi.feature }, marked: poi };
+    return undefined;
+  }
+
+  private listen(): void {
+    const options = { signal: this.listeners.signal };
+    const svgElement = this.map.svg;
+    svgElement.addEventListener('click', (event) => this.onPick(this.pickAt(event.target)?.pick ?? null), options);
+    svgElement.addEventListener(
+      'pointerover',
+      (event) => {
+        const hit = event.pointerType === 'mouse' ? this.pickAt(event.target) : undefined;
+        if (!hit) return;
+        const name = hit.pick.kind === 'station' ? hit.pick.station.properties.name : hit.pick.poi.properties.name;
+        this.tooltip.show(name, this.map.toScreen(hit.marked.anchor.x, hit.marked.anchor.y));
+      },
+      options,
+    );
+    svgElement.addEventListener('pointerout', () => this.tooltip.hide(), options);
+    svgElement.addEventListener('pointerdown', () => this.tooltip.hide(), options);
+  }
+
+  private settle(): void {
+    this.tooltip.hide();
+    this.sizeMarkers();
+    const markers = [...this.stations.values()].map((station) => station.anchor);
+    placeLabels(this.map, this.labels, markers);
+  }
+}
+
+/** Interchanges are named before plain stations. */
+function labelPriority(station: StationFeature): number {
+  return station.properties.lines.length;
+}
+
+function medianGap(edges: EdgeFeature[], frame: Frame): number {
+  const gaps = edges
+    .map(({ geometry: { coordinates } }) => {
+      const [x0, y0] = frame.project(coordinates[0]!);
+      const [x1, y1] = frame.project(coordinates[coordinates.length - 1]!);
+      return Math.hypot(x1 - x0, y1 - y0);
+    })
+    .filter((gap) => gap > 0)
+    .sort((a, b) => a - b);
+  return gaps[Math.floor(gaps.length / 2)] ?? 1;
+}
