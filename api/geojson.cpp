@@ -14,6 +14,11 @@ nlohmann::json line_string(const std::vector<geo::LonLat>& pts) {
   return {{"type", "LineString"}, {"coordinates", std::move(coords)}};
 }
 
+// Attribution is always a list of strings (empty when the data named no source).
+nlohmann::json one_attribution(const std::string& text) {
+  return text.empty() ? nlohmann::json::array() : nlohmann::json::array({text});
+}
+
 nlohmann::json attribution_list(const model::CityInfo& info) {
   nlohmann::json out = nlohmann::json::array();
   if (!info.attribution.empty()) out.push_back(info.attribution);
@@ -38,6 +43,7 @@ nlohmann::json city_summary(const model::CityInfo& info) {
   return {{"id", info.id},
           {"name", info.name},
           {"bbox", bbox_json(info.bbox)},
+          {"poi_bbox", bbox_json(info.poi_bbox)},
           {"center", position(info.bbox.center())},
           {"projection", projection_json(info.projection)},
           {"counts", {{"stations", info.station_count},
@@ -56,7 +62,7 @@ nlohmann::json road_network_summary(const model::RoadNetworkInfo& info) {
           {"projection", projection_json(info.projection)},
           {"counts", {{"nodes", info.node_count}, {"ways", info.way_count}, {"edges", info.edge_count}}},
           {"version", info.version},
-          {"attribution", nlohmann::json::array({info.attribution})}};
+          {"attribution", one_attribution(info.attribution)}};
 }
 
 nlohmann::json metro_geojson(const model::City& city, const std::optional<geo::BBox>& bbox) {
@@ -109,7 +115,7 @@ nlohmann::json metro_geojson(const model::City& city, const std::optional<geo::B
           {"city", city.info.id},
           {"version", city.info.version},
           {"lines", std::move(lines)},
-          {"attribution", city.info.attribution},
+          {"attribution", one_attribution(city.info.attribution)},
           {"features", std::move(features)}};
 }
 
@@ -139,7 +145,7 @@ nlohmann::json pois_geojson(const model::City& city, const std::optional<geo::BB
           {"matched", matched},
           {"returned", features.size()},
           {"offset", page.offset},
-          {"attribution", city.info.poi_attribution},
+          {"attribution", one_attribution(city.info.poi_attribution)},
           {"features", std::move(features)}};
 }
 
@@ -197,7 +203,7 @@ nlohmann::json roads_geojson(const RoadNetworkEntry& entry, const std::optional<
           {"network", entry.info.id},
           {"version", entry.info.version},
           {"edges", edges_out},
-          {"attribution", entry.info.attribution},
+          {"attribution", one_attribution(entry.info.attribution)},
           {"features", std::move(features)}};
 }
 

@@ -22,8 +22,7 @@ std::shared_ptr<const model::City> require_city(AppContext& ctx, const Request& 
 }
 
 Response cacheable(Response r) {
-  r.cacheable = true;
-  r.max_age_s = 60;
+  r.cacheable = true;  // no max-age: clients revalidate (cheap 304) and see imports at once
   return r;
 }
 

@@ -14,8 +14,7 @@ void add_road_routes(Router& router, AppContext& ctx) {
     nlohmann::json roads = nlohmann::json::array();
     for (const auto& info : store::list_road_networks(*db)) roads.push_back(road_network_summary(info));
     Response r = json_response({{"roads", std::move(roads)}});
-    r.cacheable = true;
-    r.max_age_s = 60;
+    r.cacheable = true;  // no max-age: clients revalidate (cheap 304) and see imports at once
     return r;
   });
 
@@ -27,8 +26,7 @@ void add_road_routes(Router& router, AppContext& ctx) {
     auto entry = ctx.catalog.road_network(id);
     if (!entry) throw ApiError(404, "not_found", "no road network '" + id + "'", "id");
     Response r = geojson_response(roads_geojson(*entry, bbox, with_nodes));
-    r.cacheable = true;
-    r.max_age_s = 60;
+    r.cacheable = true;  // no max-age: clients revalidate (cheap 304) and see imports at once
     return r;
   });
 }

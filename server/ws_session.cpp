@@ -39,7 +39,12 @@ void WsSession::accept(beast::http::request<beast::http::string_body>&& req) {
       if (auto self = weak.lock()) self->close(websocket::close_code::going_away, "server shutting down");
     });
   });
-  ws_.set_option(websocket::stream_base::timeout::suggested(beast::role_type::server));
+  // Ping a quiet client after 30 s; close it if nothing (not even a pong) arrives within 60 s.
+  websocket::stream_base::timeout timeouts{};
+  timeouts.handshake_timeout = std::chrono::seconds(30);
+  timeouts.idle_timeout = std::chrono::seconds(60);
+  timeouts.keep_alive_pings = true;
+  ws_.set_option(timeouts);
   ws_.set_option(websocket::stream_base::decorator(
       [](websocket::response_type& res) { res.set(beast::http::field::server, "tourmap"); }));
   ws_.read_message_max(kMaxMessageBytes);

@@ -34,7 +34,9 @@ constexpr const char* kCitySelect =
     " (SELECT COUNT(*) FROM metro_nodes n WHERE n.city_id = c.id AND n.station_id IS NOT NULL),"
     " (SELECT COUNT(*) FROM metro_edges e WHERE e.city_id = c.id),"
     " (SELECT COUNT(*) FROM metro_lines l WHERE l.city_id = c.id),"
-    " (SELECT COUNT(*) FROM pois p WHERE p.city_id = c.id)"
+    " (SELECT COUNT(*) FROM pois p WHERE p.city_id = c.id),"
+    " (SELECT MIN(lon) FROM pois p WHERE p.city_id = c.id), (SELECT MIN(lat) FROM pois p WHERE p.city_id = c.id),"
+    " (SELECT MAX(lon) FROM pois p WHERE p.city_id = c.id), (SELECT MAX(lat) FROM pois p WHERE p.city_id = c.id)"
     " FROM cities c";
 
 model::CityInfo read_city_info(const Stmt& st) {
@@ -50,6 +52,7 @@ model::CityInfo read_city_info(const Stmt& st) {
   info.edge_count = static_cast<std::size_t>(st.int64(12));
   info.line_count = static_cast<std::size_t>(st.int64(13));
   info.poi_count = static_cast<std::size_t>(st.int64(14));
+  if (info.poi_count > 0) info.poi_bbox = {st.real(15), st.real(16), st.real(17), st.real(18)};
   return info;
 }
 

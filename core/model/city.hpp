@@ -14,6 +14,7 @@ struct CityInfo {
   std::string id;  // url-safe slug, e.g. "vienna"
   std::string name;
   geo::BBox bbox;                 // of stations and track geometry
+  geo::BBox poi_bbox;             // of the POIs (they may reach beyond the metro); empty without POIs
   geo::LocalProjection projection;
   std::string attribution;        // of the metro data; shown wherever it is served
   std::string poi_attribution;    // of the POI data

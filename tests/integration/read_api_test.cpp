@@ -64,13 +64,18 @@ TEST_F(ReadApi, MetroGeoJson) {
 TEST_F(ReadApi, PoisWithBBoxAndPaging) {
   auto all = live->get_json("/api/v1/cities/vienna/pois");
   EXPECT_EQ(all["matched"], 63);
-  EXPECT_EQ(all["attribution"], "Stadt Wien");
+  EXPECT_EQ(all["attribution"], nlohmann::json::array({"Stadt Wien"}));
   EXPECT_TRUE(all["features"][0]["properties"].contains("image"));
   auto page = live->get_json("/api/v1/cities/vienna/pois?limit=10&offset=10");
   EXPECT_EQ(page["returned"], 10);
   EXPECT_EQ(page["features"][0]["id"], all["features"][10]["id"]);
   auto none = live->get_json("/api/v1/cities/lisbon/pois");
   EXPECT_EQ(none["matched"], 0);
+  EXPECT_EQ(none["attribution"], nlohmann::json::array());  // always a list
+  auto lisbon = live->get_json("/api/v1/cities/lisbon");
+  EXPECT_TRUE(lisbon["poi_bbox"].is_null());
+  auto vienna = live->get_json("/api/v1/cities/vienna");
+  EXPECT_EQ(vienna["poi_bbox"].size(), 4u);
 }
 
 TEST_F(ReadApi, PoiQueryWithPolygon) {

@@ -72,7 +72,7 @@ export interface MetroCollection {
   type: 'FeatureCollection';
   features: (StationFeature | EdgeFeature)[];
   lines: MetroLine[];
-  attribution: string;
+  attribution: string[];
   version: number;
 }
 
@@ -95,7 +95,7 @@ export interface PoiCollection {
   matched: number;
   returned: number;
   offset: number;
-  attribution: string;
+  attribution: string[];
   version: number;
 }
 
@@ -120,7 +120,7 @@ export interface RoadCollection {
   type: 'FeatureCollection';
   features: RoadFeature[];
   edges: number;
-  attribution: string;
+  attribution: string[];
   version: number;
 }
 

@@ -115,7 +115,7 @@ export class DeformView implements View {
       const frame = frameFor(network.bbox);
       this.map.setFrame(frame);
       drawRoads(this.map, frame, roads.features);
-      showAttribution(this.attribution, [...network.attribution, roads.attribution]);
+      showAttribution(this.attribution, [...network.attribution, ...roads.attribution]);
       this.status.clear();
       this.map.element.dataset.status = 'ready';
     } catch (error) {

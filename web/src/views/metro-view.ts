@@ -13,7 +13,7 @@ import { h } from '../ui/dom';
 import { StatusOverlay } from '../ui/status';
 import type { View } from './view';
 
-const NO_POIS: Pick<PoiCollection, 'features' | 'attribution'> = { features: [], attribution: '' };
+const NO_POIS: Pick<PoiCollection, 'features' | 'attribution'> = { features: [], attribution: [] };
 
 const plural = (n: number, word: string) => `${n.toLocaleString()} ${word}${n === 1 ? '' : 's'}`;
 
@@ -142,7 +142,7 @@ export class MetroView implements View {
       this.clearMap();
       // Legend and attribution first: fitting the map keeps clear of them.
       this.legend.show(metro.lines, pois.features.length, city.poi_categories);
-      showAttribution(this.attribution, [...city.attribution, metro.attribution, pois.attribution]);
+      showAttribution(this.attribution, [...city.attribution, ...metro.attribution, ...pois.attribution]);
       const frame = frameFor(extendBBox(city.bbox, pois.features.map((poi) => poi.geometry.coordinates)));
       this.map.setFrame(frame);
       this.layers = new MetroLayers(this.map, frame, metro, pois.features, (pick) => this.pick(pick));
