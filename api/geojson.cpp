@@ -167,8 +167,10 @@ bool segment_touches(geo::LonLat a, geo::LonLat b, const geo::BBox& box) {
   return true;
 }
 
-nlohmann::json roads_geojson(const RoadNetworkEntry& entry, const std::optional<geo::BBox>& bbox, bool with_nodes) {
+nlohmann::json roads_geojson(const RoadNetworkEntry& entry, const std::optional<geo::BBox>& bbox, bool with_nodes,
+                             const std::vector<geo::LonLat>* positions) {
   const auto& net = entry.net;
+  auto at = [&](std::uint32_t node) { return positions ? (*positions)[node] : net.nodes[node].pos; };
   nlohmann::json features = nlohmann::json::array();
   std::size_t edges_out = 0;
   for (const auto& way : net.ways) {
@@ -187,7 +189,7 @@ nlohmann::json roads_geojson(const RoadNetworkEntry& entry, const std::optional<
       nlohmann::json coords = nlohmann::json::array();
       nlohmann::json node_ids = nlohmann::json::array();
       for (std::size_t k = first; k < i; ++k) {
-        coords.push_back(position(net.nodes[way.nodes[k]].pos));
+        coords.push_back(position(at(way.nodes[k])));
         if (with_nodes) node_ids.push_back(net.nodes[way.nodes[k]].osm_id);
       }
       edges_out += i - 1 - first;
@@ -205,6 +207,29 @@ nlohmann::json roads_geojson(const RoadNetworkEntry& entry, const std::optional<
           {"edges", edges_out},
           {"attribution", one_attribution(entry.info.attribution)},
           {"features", std::move(features)}};
+}
+
+nlohmann::json roads_topology(const RoadNetworkEntry& entry) {
+  const auto& net = entry.net;
+  nlohmann::json coords = nlohmann::json::array(), ids = nlohmann::json::array(), ways = nlohmann::json::array();
+  for (const auto& n : net.nodes) {
+    auto p = position(n.pos);
+    coords.push_back(p[0]);
+    coords.push_back(p[1]);
+    ids.push_back(n.osm_id);
+  }
+  for (const auto& w : net.ways) {
+    nlohmann::json way = {{"way", w.osm_id}, {"highway", w.highway}, {"nodes", w.nodes}};
+    if (!w.name.empty()) way["name"] = w.name;
+    ways.push_back(std::move(way));
+  }
+  return {{"network", entry.info.id},
+          {"version", entry.info.version},
+          {"bbox", bbox_json(entry.info.bbox)},
+          {"positions", std::move(coords)},
+          {"node_ids", std::move(ids)},
+          {"ways", std::move(ways)},
+          {"attribution", one_attribution(entry.info.attribution)}};
 }
 
 }  // namespace tourmap::api

@@ -32,8 +32,14 @@ nlohmann::json pois_geojson(const model::City& city, const std::optional<geo::BB
                             const std::vector<std::uint32_t>& selected, const PoiPage& page);
 
 // Ways as LineStrings (split where they leave `bbox`), with OSM way ids, road class, name and,
-// when `with_nodes`, the OSM node ids along each line.
-nlohmann::json roads_geojson(const RoadNetworkEntry& entry, const std::optional<geo::BBox>& bbox, bool with_nodes);
+// when `with_nodes`, the OSM node ids along each line. `positions` (one per node) replaces the
+// node positions, e.g. by deformed ones; the bbox still applies to the original positions.
+nlohmann::json roads_geojson(const RoadNetworkEntry& entry, const std::optional<geo::BBox>& bbox, bool with_nodes,
+                             const std::vector<geo::LonLat>* positions = nullptr);
+
+// The network as arrays for clients that redraw it often: node positions (flat lon,lat), node
+// ids, and ways as node index lists. Deformation results in "positions" form follow this order.
+nlohmann::json roads_topology(const RoadNetworkEntry& entry);
 
 // True when the segment a-b touches the box (Liang-Barsky clipping in lon/lat).
 bool segment_touches(geo::LonLat a, geo::LonLat b, const geo::BBox& box);

@@ -21,11 +21,17 @@ void add_road_routes(Router& router, AppContext& ctx) {
   router.add("GET", "/api/v1/roads/{id}", Exec::compute, [&ctx](Request& req) {
     auto bbox = query_bbox(req);
     bool with_nodes = query_bool(req, "nodes", false);
+    std::string format = req.query_param("format") ? *req.query_param("format") : "geojson";
+    if (format != "geojson" && format != "topology")
+      throw ApiError(400, "invalid_parameter", "format: expected geojson or topology", "format");
+    if (format == "topology" && bbox)
+      throw ApiError(400, "invalid_parameter", "bbox: not available with format=topology (whole networks only)", "bbox");
     const auto& id = req.param("id");
     require_slug(id, "road network");
     auto entry = ctx.catalog.road_network(id);
     if (!entry) throw ApiError(404, "not_found", "no road network '" + id + "'", "id");
-    Response r = geojson_response(roads_geojson(*entry, bbox, with_nodes));
+    Response r = format == "topology" ? json_response(roads_topology(*entry))
+                                      : geojson_response(roads_geojson(*entry, bbox, with_nodes));
     r.cacheable = true;  // no max-age: clients revalidate (cheap 304) and see imports at once
     return r;
   });

@@ -26,7 +26,9 @@ void add_system_routes(Router& router, AppContext& ctx) {
                                 {"spec", "/api/v1/openapi.yaml"},
                                 {"endpoints", {"/api/v1/cities", "/api/v1/cities/{id}", "/api/v1/cities/{id}/metro",
                                                "/api/v1/cities/{id}/pois", "/api/v1/cities/{id}/pois/query",
-                                               "/api/v1/roads", "/api/v1/roads/{id}", "/healthz", "/metrics"}}});
+                                               "/api/v1/roads", "/api/v1/roads/{id}", "/api/v1/deform/focus",
+                                               "/api/v1/deform/mental", "/api/v1/deform/destination",
+                                               "/api/v1/events", "/healthz", "/metrics"}}});
     r.cacheable = true;
     return r;
   });

@@ -3,6 +3,7 @@
 // routes (/metrics) and static files.
 
 #include "catalog.hpp"
+#include "deform_service.hpp"
 #include "router.hpp"
 
 #include <chrono>
@@ -13,6 +14,7 @@ namespace tourmap::api {
 struct AppContext {
   store::DbPool& db;
   Catalog& catalog;
+  DeformService& deform;
   std::string version;  // tourmap build version
   std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
 };
@@ -24,11 +26,13 @@ inline constexpr std::size_t kDefaultPoiLimit = 1000;
 void add_system_routes(Router& router, AppContext& ctx);
 void add_city_routes(Router& router, AppContext& ctx);
 void add_road_routes(Router& router, AppContext& ctx);
+void add_deform_routes(Router& router, AppContext& ctx);
 
 inline void add_api_routes(Router& router, AppContext& ctx) {
   add_system_routes(router, ctx);
   add_city_routes(router, ctx);
   add_road_routes(router, ctx);
+  add_deform_routes(router, ctx);
 }
 
 }  // namespace tourmap::api

@@ -30,7 +30,8 @@ std::vector<std::pair<std::string, std::string>> registered_routes() {
   ServerState state(config);
   store::DbPool db(":memory:");
   api::Catalog catalog(db);
-  api::AppContext ctx{db, catalog, "routes"};
+  api::DeformService deform(catalog);
+  api::AppContext ctx{db, catalog, deform, "routes"};
   boost::asio::io_context ioc;
   EventHub events(ioc, db, std::chrono::milliseconds(1000));
   register_routes(state, ctx, events);

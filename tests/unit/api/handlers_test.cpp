@@ -12,7 +12,7 @@ namespace {
 // Handlers called through the router, without a socket.
 class HandlersTest : public ::testing::Test {
  protected:
-  HandlersTest() : pool(dir.file("t.db")), catalog(pool), ctx{pool, catalog, "test"} {
+  HandlersTest() : pool(dir.file("t.db")), catalog(pool), deform(catalog), ctx{pool, catalog, deform, "test"} {
     auto db = pool.acquire();
     store::migrate(*db);
     store::import_metro(*db, {{"vienna", "Vienna", "Wiener Linien"}, store::MetroFormat::loom,
@@ -41,6 +41,7 @@ class HandlersTest : public ::testing::Test {
   test::TempDir dir;
   store::DbPool pool;
   Catalog catalog;
+  DeformService deform;
   AppContext ctx;
   Router router;
 };

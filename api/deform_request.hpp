@@ -1,0 +1,89 @@
+#pragma once
+// POST /api/v1/deform/{focus,mental,destination}: the request body, validated. Every error is an
+// ApiError naming the field (e.g. "regions[1].scale"). Geometry stays in lon/lat here; the
+// service converts it to map units once it has the network.
+
+#include "http.hpp"
+
+#include "deform/problem.hpp"
+#include "deform/solver.hpp"
+#include "geo/lonlat.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace tourmap::api {
+
+enum class DeformApp { focus, mental, destination };
+
+// Limits (documented in openapi.yaml).
+struct DeformLimits {
+  int max_base = 64;
+  int max_depth = 6;
+  int max_uniform = 256;
+  std::size_t max_unknowns = 250000;
+  std::size_t max_regions = 32;
+  std::size_t max_guides = 2000;
+  std::size_t max_route = 20000;
+  std::size_t max_polygon_vertices = 10000;
+  std::size_t max_inline_vertices = 50000;
+  double max_scale = 50.0;
+  double max_time_limit_ms = 30000.0;
+};
+
+struct GridChoice {
+  enum class Kind { adaptive, uniform, edges } kind = Kind::adaptive;
+  int base = 10;   // adaptive
+  int depth = 3;   // adaptive
+  int c = 4;       // adaptive: split quads holding more road vertices than this
+  int n = 80;      // uniform
+  std::string describe() const;  // canonical, for cache keys and stats
+};
+
+struct FocusRegionInput {
+  std::optional<geo::LonLat> center;
+  double radius_m = 0.0;
+  std::vector<geo::LonLat> polygon;
+  double scale = 1.0;
+};
+
+struct GuideInput {
+  std::optional<std::int64_t> vertex;  // road node id (OSM id, or index for inline roads)
+  std::optional<geo::LonLat> point;    // else: snap this point to the nearest road node
+  geo::LonLat target;
+};
+
+struct DeformRequest {
+  DeformApp app = DeformApp::focus;
+  std::string roads_id;                     // a stored road network, or
+  std::optional<nlohmann::json> roads_inline;  // an inline GeoJSON FeatureCollection of LineStrings
+  GridChoice grid;
+  deform::Weights weights;
+  deform::Boundary boundary = deform::Boundary::fixed;
+  deform::SolverKind solver = deform::SolverKind::cholesky;
+  int max_iterations = 20000;
+  double tolerance = 1e-8;
+  double time_limit_ms = 10000.0;
+  bool relax = false;
+  bool check_crossings = false;
+  enum class RoadsOutput { geojson, positions, none } roads_output = RoadsOutput::geojson;
+  bool grid_output = true;
+
+  std::vector<FocusRegionInput> regions;  // focus
+  std::vector<GuideInput> guides;         // mental
+  std::vector<std::int64_t> route;        // destination: road node ids along the route
+  std::vector<geo::LonLat> sketch;        // destination
+  double simplify_m = 0.0;                // destination: Douglas-Peucker tolerance for the sketch
+
+  std::string canonical;  // the body as parsed, re-serialised (cache key part)
+};
+
+DeformRequest parse_deform_request(DeformApp app, const nlohmann::json& body, const DeformLimits& limits = {});
+
+const char* app_name(DeformApp app);
+
+}  // namespace tourmap::api

@@ -1,0 +1,333 @@
+#include "deform_service.hpp"
+
+#include "geojson.hpp"
+#include "params.hpp"
+#include "roads_in.hpp"
+
+#include "grid/grid.hpp"
+
+#include <chrono>
+#include <cstdio>
+
+namespace tourmap::api {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
+
+std::uint64_t edge_key(std::uint32_t a, std::uint32_t b) {
+  if (a > b) std::swap(a, b);
+  return (static_cast<std::uint64_t>(a) << 32) | b;
+}
+
+std::string fnv_hex(const std::string& s) {
+  std::uint64_t h = 1469598103934665603ull;
+  for (unsigned char c : s) {
+    h ^= c;
+    h *= 1099511628211ull;
+  }
+  char buf[17];
+  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
+  return buf;
+}
+
+ApiError bad(const std::string& field, const std::string& message) {
+  return ApiError(400, "invalid_parameter", field + ": " + message, field);
+}
+
+std::shared_ptr<DeformNetwork> make_network(std::string key, std::shared_ptr<const RoadNetworkEntry> entry) {
+  auto n = std::make_shared<DeformNetwork>();
+  n->key = std::move(key);
+  n->entry = std::move(entry);
+  const auto& roads = n->entry->net;
+  n->planar = deform::make_planar(roads);
+  n->rest_lonlat.reserve(roads.nodes.size());
+  for (std::uint32_t i = 0; i < roads.nodes.size(); ++i) {
+    n->node_by_id.emplace(roads.nodes[i].osm_id, i);
+    n->rest_lonlat.push_back(roads.nodes[i].pos);
+  }
+  for (const auto& e : roads.edges) n->edge_keys.insert(edge_key(e.from, e.to));
+  n->index = std::make_unique<deform::NodeIndex>(n->planar.nodes);
+  const auto& lo = n->planar.min;
+  const auto& hi = n->planar.max;
+  double mx = 0.25 * (hi.x - lo.x) + 1, my = 0.25 * (hi.y - lo.y) + 1;
+  n->unproject = deform::FastUnproject(n->planar.transform, {lo.x - mx, lo.y - my}, {hi.x + mx, hi.y + my});
+  return n;
+}
+
+std::string weights_key(const deform::Weights& w) {
+  char buf[160];
+  std::snprintf(buf, sizeof buf, "w=%.17g,%.17g,%.17g,%.17g", w.road, w.quad, w.smooth, w.guide);
+  return buf;
+}
+
+}  // namespace
+
+bool DeformNetwork::has_edge(std::uint32_t a, std::uint32_t b) const { return edge_keys.count(edge_key(a, b)) != 0; }
+
+std::size_t DeformNetwork::rest_crossings() const {
+  std::call_once(crossings_once_, [this] { crossings_ = deform::count_crossings(planar.nodes, planar.edges); });
+  return crossings_;
+}
+
+DeformService::DeformService(Catalog& catalog, DeformLimits limits) : catalog_(catalog), limits_(limits) {}
+
+DeformService::CacheStats DeformService::cache_stats() const {
+  return {networks_.size(), prepared_.size(), results_.size(), results_.used()};
+}
+
+std::shared_ptr<const DeformNetwork> DeformService::network_for(const DeformRequest& r) {
+  if (r.roads_inline) {
+    auto key = "inline:" + fnv_hex(r.roads_inline->dump());
+    if (auto hit = networks_.get(key)) return *hit;
+    auto entry = std::make_shared<RoadNetworkEntry>();
+    entry->net = parse_inline_roads(*r.roads_inline, "roads", limits_.max_inline_vertices);
+    entry->info.id = "inline";
+    entry->info.name = "inline";
+    entry->info.node_count = entry->net.nodes.size();
+    entry->info.edge_count = entry->net.edges.size();
+    entry->info.way_count = entry->net.ways.size();
+    auto net = make_network(key, entry);
+    networks_.put(key, net);
+    return net;
+  }
+  require_slug(r.roads_id, "road network");
+  auto entry = catalog_.road_network(r.roads_id);
+  if (!entry) throw ApiError(404, "not_found", "no road network '" + r.roads_id + "'", "roads");
+  auto key = entry->info.id + "@" + std::to_string(entry->info.version);
+  if (auto hit = networks_.get(key)) return *hit;
+  auto net = make_network(key, entry);
+  networks_.put(key, net);
+  return net;
+}
+
+std::shared_ptr<deform::Prepared> DeformService::prepared_for(const DeformRequest& r, const DeformNetwork& net,
+                                                              const std::vector<std::uint32_t>& guide_nodes,
+                                                              bool* cache_hit) {
+  std::string key = net.key + "|" + r.grid.describe() + "|" + weights_key(r.weights) + "|" +
+                    (r.boundary == deform::Boundary::fixed ? "fixed" : "sliding") + "|g=";
+  for (auto g : guide_nodes) key += std::to_string(g) + ",";
+  *cache_hit = true;
+  if (auto hit = prepared_.get(key)) return *hit;
+
+  // One build per key at a time: concurrent identical requests wait for it.
+  std::shared_future<std::shared_ptr<deform::Prepared>> pending;
+  std::promise<std::shared_ptr<deform::Prepared>> promise;
+  bool builder = false;
+  {
+    std::lock_guard lock(building_mutex_);
+    auto it = building_.find(key);
+    if (it != building_.end()) {
+      pending = it->second;
+    } else {
+      pending = promise.get_future().share();
+      building_.emplace(key, pending);
+      builder = true;
+    }
+  }
+  if (!builder) return pending.get();
+  *cache_hit = false;
+  try {
+    std::shared_ptr<deform::Prepared> p;
+    const auto& planar = net.planar;
+    if (r.grid.kind == GridChoice::Kind::edges) {
+      if (2 * planar.nodes.size() > limits_.max_unknowns)
+        throw ApiError(413, "too_large", "grid: the edge-level method would need more than " +
+                                             std::to_string(limits_.max_unknowns) + " unknowns", "grid");
+      p = std::make_shared<deform::Prepared>(deform::prepare_edges(planar, guide_nodes, r.weights));
+    } else {
+      grid::Grid g;
+      if (r.grid.kind == GridChoice::Kind::uniform) {
+        g = grid::build_uniform(grid::frame_around(planar.nodes, r.grid.n));
+      } else {
+        std::vector<geo::XY> special;
+        for (auto n : guide_nodes) special.push_back(planar.nodes[n]);
+        g = grid::build_adaptive(grid::frame_around(planar.nodes, r.grid.base), planar.nodes, special,
+                                 {r.grid.base, r.grid.depth, r.grid.c});
+      }
+      if (2 * g.vertices.size() > limits_.max_unknowns)
+        throw ApiError(413, "too_large", "grid: " + std::to_string(g.vertices.size()) + " grid vertices exceed the limit of " +
+                                             std::to_string(limits_.max_unknowns / 2) + "; use a coarser grid", "grid");
+      p = std::make_shared<deform::Prepared>(
+          deform::prepare_grid(planar, std::move(g), guide_nodes, r.weights, r.boundary));
+    }
+    prepared_.put(key, p);
+    promise.set_value(p);
+    std::lock_guard lock(building_mutex_);
+    building_.erase(key);
+    return p;
+  } catch (...) {
+    promise.set_exception(std::current_exception());
+    std::lock_guard lock(building_mutex_);
+    building_.erase(key);
+    throw;
+  }
+}
+
+Response DeformService::handle(DeformApp app, const Request& req) {
+  auto started = Clock::now();
+  auto body = parse_json_body(req);
+  auto r = parse_deform_request(app, body, limits_);
+  auto net = network_for(r);
+  const auto& planar = net->planar;
+  const auto& transform = planar.transform;
+
+  // The request's inputs, in map units.
+  deform::Targets targets;
+  std::size_t scaled_edges = 0;
+  if (app == DeformApp::focus) {
+    std::vector<deform::FocusRegion> regions;
+    for (const auto& in : r.regions) {
+      deform::FocusRegion fr;
+      fr.scale = in.scale;
+      if (in.polygon.empty()) {
+        fr.center = transform.to_map(*in.center);
+        fr.radius = in.radius_m / transform.metres_per_unit;
+      } else {
+        for (const auto& p : in.polygon) fr.polygon.push_back(transform.to_map(p));
+      }
+      regions.push_back(std::move(fr));
+    }
+    targets.edge_scale = deform::focus_edge_scales(planar, regions);
+    for (double s : targets.edge_scale) scaled_edges += s != 1.0;
+  }
+  auto node_index = [&](std::int64_t id, const std::string& field) {
+    auto it = net->node_by_id.find(id);
+    if (it == net->node_by_id.end())
+      throw bad(field, "no road vertex " + std::to_string(id) + " in this network");
+    return it->second;
+  };
+  std::vector<deform::Guide> guides;
+  if (app == DeformApp::mental) {
+    for (std::size_t i = 0; i < r.guides.size(); ++i) {
+      const auto& g = r.guides[i];
+      auto field = "guides[" + std::to_string(i) + "]";
+      std::uint32_t node = g.vertex ? node_index(*g.vertex, field + ".vertex") : net->index->nearest(transform.to_map(*g.point));
+      guides.push_back({node, transform.to_map(g.target)});
+    }
+  }
+  if (app == DeformApp::destination) {
+    std::vector<std::uint32_t> route;
+    std::unordered_set<std::uint32_t> seen;
+    for (std::size_t i = 0; i < r.route.size(); ++i) {
+      auto field = "route[" + std::to_string(i) + "]";
+      auto node = node_index(r.route[i], field);
+      if (!seen.insert(node).second) throw bad(field, "road vertex " + std::to_string(r.route[i]) + " repeats");
+      if (!route.empty() && !net->has_edge(route.back(), node))
+        throw bad(field, "road vertices " + std::to_string(r.route[i - 1]) + " and " + std::to_string(r.route[i]) +
+                             " are not joined by a road edge");
+      route.push_back(node);
+    }
+    std::vector<geo::XY> sketch;
+    for (const auto& p : r.sketch) sketch.push_back(transform.to_map(p));
+    sketch = deform::simplify_polyline(sketch, r.simplify_m / transform.metres_per_unit);
+    guides = deform::route_to_sketch(planar, route, sketch);
+  }
+  auto sorted = deform::sorted_guides(guides);
+  if (!sorted) throw bad(app == DeformApp::mental ? "guides" : "route", "two guides pull the same road vertex");
+  targets.guides = std::move(*sorted);
+  auto guide_nodes = deform::guide_nodes(targets.guides);
+
+  // Whole-result cache.
+  std::string result_key = net->key + "|" + app_name(app) + "|" + r.canonical;
+  if (auto hit = results_.get(result_key)) {
+    Response cached;
+    cached.body = **hit;
+    cached.headers.emplace_back("X-Result-Cache", "hit");
+    return cached;
+  }
+
+  bool prepared_hit = false;
+  auto prepared = prepared_for(r, *net, guide_nodes, &prepared_hit);
+  deform::RunOptions options;
+  options.solve.kind = r.solver;
+  options.solve.max_iterations = r.max_iterations;
+  options.solve.tolerance = r.tolerance;
+  options.solve.time_limit_ms = r.time_limit_ms;
+  options.relax = r.relax;
+  options.count_crossings = r.check_crossings;
+  std::optional<std::size_t> rest_crossings;
+  if (r.check_crossings) rest_crossings = net->rest_crossings();
+  auto result = deform::run(*prepared, planar, targets, options, rest_crossings);
+
+  // Response.
+  auto out_start = Clock::now();
+  std::vector<geo::LonLat> deformed;
+  deformed.reserve(result.nodes.size());
+  for (const auto& p : result.nodes) deformed.push_back(net->unproject(p));
+
+  nlohmann::json out = {{"app", app_name(app)}, {"roads_id", net->entry->info.id}};
+  if (r.roads_output == DeformRequest::RoadsOutput::geojson) {
+    auto fc = roads_geojson(*net->entry, std::nullopt, false, &deformed);
+    out["roads"] = std::move(fc);
+  } else if (r.roads_output == DeformRequest::RoadsOutput::positions) {
+    nlohmann::json flat = nlohmann::json::array();
+    for (const auto& p : deformed) {
+      flat.push_back(position(p)[0]);
+      flat.push_back(position(p)[1]);
+    }
+    out["positions"] = std::move(flat);
+  }
+  if (r.grid_output && prepared->grid) {
+    const auto& g = *prepared->grid;
+    nlohmann::json quads = nlohmann::json::array(), before = nlohmann::json::array(),
+                   after = nlohmann::json::array(), tj = nlohmann::json::array();
+    for (const auto& q : g.quads) quads.push_back({q.corners[0], q.corners[1], q.corners[2], q.corners[3]});
+    for (std::size_t i = 0; i < g.vertices.size(); ++i) {
+      before.push_back(position(net->unproject(g.vertices[i])));
+      after.push_back(position(net->unproject(result.points[i])));
+    }
+    for (const auto& t : g.tjunctions) tj.push_back({t.vertex, t.coarse_quad});
+    out["grid"] = {{"quads", std::move(quads)}, {"before", std::move(before)}, {"after", std::move(after)},
+                   {"tjunctions", std::move(tj)}};
+  } else {
+    out["grid"] = nullptr;
+  }
+  if (!targets.guides.empty()) {
+    nlohmann::json list = nlohmann::json::array();
+    for (const auto& g : targets.guides)
+      list.push_back({{"vertex", net->entry->net.nodes[g.node].osm_id},
+                      {"from", position(net->rest_lonlat[g.node])},
+                      {"target", position(transform.to_lonlat(g.target))},
+                      {"to", position(deformed[g.node])}});
+    out["guides"] = std::move(list);
+  }
+
+  double rest_residue = deform::residue(planar, targets, planar.nodes);
+  const auto& s = result.solve;
+  nlohmann::json stats = {
+      {"method", r.grid.describe()},
+      {"solver", s.kind == deform::SolverKind::cg ? "cg" : "cholesky"},
+      {"residue", result.residue},
+      {"residue_rest", rest_residue},
+      {"road_edges", planar.edges.size()},
+      {"scaled_edges", scaled_edges},
+      {"guides", targets.guides.size()},
+      {"unknowns", prepared->rest_unknowns.size()},
+      {"quads", prepared->grid ? prepared->grid->quads.size() : 0},
+      {"grid_edges", prepared->grid ? grid::count_grid_edges(*prepared->grid) : 0},
+      {"support_edges", prepared->support_edges},
+      {"iterations", s.iterations},
+      {"converged", s.converged},
+      {"relative_residual", s.relative_residual},
+      {"foldovers", result.inverted_quads},
+      {"crossings_added", result.crossings_added ? nlohmann::json(*result.crossings_added) : nlohmann::json(nullptr)},
+      {"relax_iterations", result.relax_iterations},
+      {"cache", prepared_hit ? "hit" : "miss"},
+      {"assembly_ms", prepared_hit ? 0.0 : prepared->assembly_ms},
+      {"factor_ms", s.factor_ms},
+      {"solve_ms", s.solve_ms},
+      {"rhs_ms", result.rhs_ms},
+      {"place_ms", result.place_ms},
+      {"output_ms", ms_since(out_start)},
+      {"total_ms", ms_since(started)}};
+  out["stats"] = std::move(stats);
+  out["attribution"] = nlohmann::json::array();
+  if (!net->entry->info.attribution.empty()) out["attribution"].push_back(net->entry->info.attribution);
+
+  Response resp = json_response(out);
+  results_.put(result_key, std::make_shared<const std::string>(resp.body), resp.body.size());
+  return resp;
+}
+
+}  // namespace tourmap::api

@@ -1,0 +1,35 @@
+#pragma once
+// One deformation run on a prepared system: right-hand side for the request's targets, solve,
+// place the road nodes, measure residue and foldovers, optionally relax.
+
+#include "deform/foldover.hpp"
+#include "deform/solver.hpp"
+
+#include <optional>
+
+namespace tourmap::deform {
+
+struct RunOptions {
+  SolveOptions solve;
+  bool relax = false;             // run the foldover relaxation step
+  int relax_iterations = 100;
+  bool count_crossings = false;   // road edge crossings added by the deformation (costly on big maps)
+};
+
+struct RunResult {
+  std::vector<XY> points;  // grid vertices (grid method) or road nodes (edge method)
+  std::vector<XY> nodes;   // deformed road nodes
+  Eigen::VectorXd unknowns;  // for warm starts
+  SolveReport solve;
+  double rhs_ms = 0.0, place_ms = 0.0;
+  double residue = 0.0;
+  std::size_t inverted_quads = 0;
+  std::optional<std::size_t> crossings_added;
+  int relax_iterations = 0;
+};
+
+// `rest_crossings` (crossings of the undeformed network) is needed when counting crossings.
+RunResult run(Prepared& p, const PlanarNetwork& net, const Targets& targets, const RunOptions& options,
+              std::optional<std::size_t> rest_crossings = std::nullopt);
+
+}  // namespace tourmap::deform

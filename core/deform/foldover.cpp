@@ -1,0 +1,112 @@
+#include "deform/foldover.hpp"
+
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/box_intersection_d.h>
+
+#include <algorithm>
+#include <set>
+
+namespace tourmap::deform {
+namespace {
+
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Point = Kernel::Point_2;
+
+bool quad_ok(const std::array<XY, 4>& c) {
+  for (int k = 0; k < 4; ++k) {
+    const auto& a = c[(k + 3) % 4];
+    const auto& b = c[k];
+    const auto& d = c[(k + 1) % 4];
+    if (CGAL::orientation(Point(a.x, a.y), Point(b.x, b.y), Point(d.x, d.y)) != CGAL::LEFT_TURN) return false;
+  }
+  return true;
+}
+
+std::vector<std::uint32_t> folded_quads(const grid::Grid& g, const std::vector<XY>& pos) {
+  std::vector<std::uint32_t> out;
+  for (std::uint32_t q = 0; q < g.quads.size(); ++q)
+    if (!quad_ok(grid::corners_of(g, pos, q))) out.push_back(q);
+  return out;
+}
+
+}  // namespace
+
+std::size_t count_inverted_quads(const grid::Grid& g, const std::vector<XY>& pos) { return folded_quads(g, pos).size(); }
+
+std::size_t count_crossings(const std::vector<XY>& nodes,
+                            const std::vector<std::pair<std::uint32_t, std::uint32_t>>& edges) {
+  using Box = CGAL::Box_intersection_d::Box_with_handle_d<double, 2, std::size_t, CGAL::Box_intersection_d::ID_EXPLICIT>;
+  std::vector<Box> boxes;
+  boxes.reserve(edges.size());
+  for (std::size_t i = 0; i < edges.size(); ++i) {
+    const auto& a = nodes[edges[i].first];
+    const auto& b = nodes[edges[i].second];
+    double lo[2] = {std::min(a.x, b.x), std::min(a.y, b.y)}, hi[2] = {std::max(a.x, b.x), std::max(a.y, b.y)};
+    boxes.emplace_back(lo, hi, i);
+  }
+  std::size_t crossings = 0;
+  auto check = [&](const Box& x, const Box& y) {
+    auto [a0, a1] = edges[x.handle()];
+    auto [b0, b1] = edges[y.handle()];
+    if (a0 == b0 || a0 == b1 || a1 == b0 || a1 == b1) return;  // adjacent edges meet at their node
+    Kernel::Segment_2 s(Point(nodes[a0].x, nodes[a0].y), Point(nodes[a1].x, nodes[a1].y));
+    Kernel::Segment_2 t(Point(nodes[b0].x, nodes[b0].y), Point(nodes[b1].x, nodes[b1].y));
+    if (CGAL::do_intersect(s, t)) ++crossings;
+  };
+  CGAL::box_self_intersection_d(boxes.begin(), boxes.end(), check);
+  return crossings;
+}
+
+int relax_foldovers(const Prepared& p, std::vector<XY>& points, int max_iterations) {
+  if (p.method != Method::grid || !p.grid) return 0;
+  const auto& g = *p.grid;
+  int it = 0;
+  for (; it < max_iterations; ++it) {
+    auto folded = folded_quads(g, points);
+    if (folded.empty()) break;
+    std::set<std::uint32_t> moving;
+    for (auto q : folded)
+      for (auto v : g.quads[q].corners) moving.insert(v);
+    std::vector<std::pair<std::uint32_t, XY>> next;
+    for (auto v : moving) {
+      XY sum{0, 0};
+      int n = 0;
+      for (const auto& nb : g.neighbors[v]) {
+        if (nb.kind == grid::Neighbor::Kind::vertex) {
+          sum.x += points[nb.index].x;
+          sum.y += points[nb.index].y;
+          ++n;
+        } else if (nb.kind == grid::Neighbor::Kind::quad_centroid) {
+          for (auto c : g.quads[nb.index].corners) {
+            sum.x += 0.25 * points[c].x;
+            sum.y += 0.25 * points[c].y;
+          }
+          ++n;
+        }
+      }
+      if (n == 0) continue;
+      // Spring towards the neighbours' average, keeping the rest offset (the rest Laplacian).
+      XY rest_sum{0, 0};
+      for (const auto& nb : g.neighbors[v]) {
+        if (nb.kind == grid::Neighbor::Kind::vertex) {
+          rest_sum.x += p.rest[nb.index].x;
+          rest_sum.y += p.rest[nb.index].y;
+        } else if (nb.kind == grid::Neighbor::Kind::quad_centroid) {
+          for (auto c : g.quads[nb.index].corners) {
+            rest_sum.x += 0.25 * p.rest[c].x;
+            rest_sum.y += 0.25 * p.rest[c].y;
+          }
+        }
+      }
+      XY target{sum.x / n + p.rest[v].x - rest_sum.x / n, sum.y / n + p.rest[v].y - rest_sum.y / n};
+      XY moved = points[v];
+      if (p.column[v][0] >= 0) moved.x = 0.5 * (moved.x + target.x);
+      if (p.column[v][1] >= 0) moved.y = 0.5 * (moved.y + target.y);
+      next.emplace_back(v, moved);
+    }
+    for (const auto& [v, pos] : next) points[v] = pos;
+  }
+  return it;
+}
+
+}  // namespace tourmap::deform

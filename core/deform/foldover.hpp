@@ -1,0 +1,24 @@
+#pragma once
+// Foldovers after a solve (paper 4.4.2 "Preventing foldovers"): inverted or non-convex quads,
+// and road edges that cross after deformation but did not before; plus the optional relaxation
+// step that smooths the vertices of folded quads until none is left (or a cap is hit).
+
+#include "deform/system.hpp"
+
+#include <cstddef>
+
+namespace tourmap::deform {
+
+// Quads whose deformed corners no longer turn counter-clockwise at every corner (CGAL exact
+// orientation predicates).
+std::size_t count_inverted_quads(const grid::Grid& grid, const std::vector<XY>& positions);
+
+// Pairs of road edges without a shared node that intersect (CGAL box intersection + exact
+// segment predicates).
+std::size_t count_crossings(const std::vector<XY>& nodes, const std::vector<std::pair<std::uint32_t, std::uint32_t>>& edges);
+
+// Moves the free coordinates of folded quads' vertices halfway towards their orthogonal
+// neighbours' average, repeatedly; returns the iterations run. Grid method only.
+int relax_foldovers(const Prepared& p, std::vector<XY>& points, int max_iterations);
+
+}  // namespace tourmap::deform

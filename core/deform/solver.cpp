@@ -1,0 +1,92 @@
+#include "deform/solver.hpp"
+
+#include <Eigen/SparseCholesky>
+
+#include <chrono>
+#include <stdexcept>
+
+namespace tourmap::deform {
+
+struct Prepared::Factor {
+  Eigen::SimplicialLDLT<SparseMatrix> ldlt;
+};
+
+std::shared_ptr<const Prepared::Factor> Prepared::factor(double* factor_ms, bool* cached) {
+  std::lock_guard lock(*factor_mutex_);
+  if (factor_) {
+    if (cached) *cached = true;
+    if (factor_ms) *factor_ms = 0.0;
+    return factor_;
+  }
+  auto start = std::chrono::steady_clock::now();
+  auto f = std::make_shared<Factor>();
+  f->ldlt.compute(normal);
+  if (f->ldlt.info() != Eigen::Success) throw std::runtime_error("Cholesky factorization failed (system not positive definite)");
+  factor_ = f;
+  if (cached) *cached = false;
+  if (factor_ms) *factor_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return factor_;
+}
+
+namespace {
+using Clock = std::chrono::steady_clock;
+double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
+}  // namespace
+
+Eigen::VectorXd conjugate_gradient(const SparseMatrix& N, const Eigen::VectorXd& rhs, const Eigen::VectorXd& x0,
+                                   const SolveOptions& options, SolveReport& report) {
+  auto start = Clock::now();
+  Eigen::VectorXd inv_diag = N.diagonal().cwiseInverse();
+  Eigen::VectorXd x = x0;
+  Eigen::VectorXd r = rhs - N * x;
+  Eigen::VectorXd z = inv_diag.cwiseProduct(r);
+  Eigen::VectorXd d = z;
+  double rz = r.dot(z);
+  double rhs_norm = rhs.norm();
+  double stop = options.tolerance * (rhs_norm > 0 ? rhs_norm : 1.0);
+  report.iterations = 0;
+  report.converged = r.norm() <= stop;
+  Eigen::VectorXd Nd(x.size());
+  while (!report.converged && report.iterations < options.max_iterations) {
+    Nd.noalias() = N * d;
+    double dNd = d.dot(Nd);
+    if (dNd <= 0) break;  // no progress possible (semidefinite direction)
+    double alpha = rz / dNd;
+    x += alpha * d;
+    r -= alpha * Nd;
+    ++report.iterations;
+    if (r.norm() <= stop) {
+      report.converged = true;
+      break;
+    }
+    z = inv_diag.cwiseProduct(r);
+    double rz_next = r.dot(z);
+    d = z + (rz_next / rz) * d;
+    rz = rz_next;
+    if ((report.iterations & 15) == 0 && ms_since(start) > options.time_limit_ms) break;
+  }
+  report.relative_residual = (rhs - N * x).norm() / (rhs_norm > 0 ? rhs_norm : 1.0);
+  return x;
+}
+
+Eigen::VectorXd solve(Prepared& p, const Eigen::VectorXd& rhs, const SolveOptions& options, SolveReport& report) {
+  report.kind = options.kind;
+  if (options.kind == SolverKind::cg) {
+    auto start = Clock::now();
+    const Eigen::VectorXd& x0 =
+        options.warm_start && options.warm_start->size() == rhs.size() ? *options.warm_start : p.rest_unknowns;
+    auto x = conjugate_gradient(p.normal, rhs, x0, options, report);
+    report.solve_ms = ms_since(start);
+    return x;
+  }
+  auto factor = p.factor(&report.factor_ms, &report.factor_cached);
+  auto start = Clock::now();
+  Eigen::VectorXd x = factor->ldlt.solve(rhs);
+  report.solve_ms = ms_since(start);
+  double rhs_norm = rhs.norm();
+  report.relative_residual = (p.normal * x - rhs).norm() / (rhs_norm > 0 ? rhs_norm : 1.0);
+  report.converged = x.allFinite();
+  return x;
+}
+
+}  // namespace tourmap::deform
