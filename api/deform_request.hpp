@@ -26,6 +26,7 @@ struct DeformLimits {
   int max_depth = 6;
   int max_uniform = 256;
   std::size_t max_unknowns = 250000;
+  std::uint64_t max_lattice_cells = 1u << 22;  // finest-level cells of an adaptive grid (memory)
   std::size_t max_regions = 32;
   std::size_t max_guides = 2000;
   std::size_t max_route = 20000;

@@ -1,6 +1,7 @@
 #include "deform_service.hpp"
 
 #include "geojson.hpp"
+#include "json_out.hpp"
 #include "params.hpp"
 #include "roads_in.hpp"
 
@@ -142,8 +143,14 @@ std::shared_ptr<deform::Prepared> DeformService::prepared_for(const DeformReques
       } else {
         std::vector<geo::XY> special;
         for (auto n : guide_nodes) special.push_back(planar.nodes[n]);
-        g = grid::build_adaptive(grid::frame_around(planar.nodes, r.grid.base), planar.nodes, special,
-                                 {r.grid.base, r.grid.depth, r.grid.c});
+        auto frame = grid::frame_around(planar.nodes, r.grid.base);
+        if (grid::lattice_cells(frame, r.grid.depth) > limits_.max_lattice_cells)
+          throw ApiError(413, "too_large",
+                         "grid: base " + std::to_string(r.grid.base) + " at depth " + std::to_string(r.grid.depth) +
+                             " is finer than " + std::to_string(limits_.max_lattice_cells) +
+                             " finest cells; lower base or depth",
+                         "grid");
+        g = grid::build_adaptive(frame, planar.nodes, special, {r.grid.base, r.grid.depth, r.grid.c});
       }
       if (2 * g.vertices.size() > limits_.max_unknowns)
         throw ApiError(413, "too_large", "grid: " + std::to_string(g.vertices.size()) + " grid vertices exceed the limit of " +
@@ -257,16 +264,14 @@ Response DeformService::handle(DeformApp app, const Request& req) {
   for (const auto& p : result.nodes) deformed.push_back(net->unproject(p));
 
   nlohmann::json out = {{"app", app_name(app)}, {"roads_id", net->entry->info.id}};
+  // The big part (roads or positions) is written as text and spliced in front of the rest.
+  std::string roads_text;
   if (r.roads_output == DeformRequest::RoadsOutput::geojson) {
-    auto fc = roads_geojson(*net->entry, std::nullopt, false, &deformed);
-    out["roads"] = std::move(fc);
+    roads_text = R"({"roads":)" + roads_geojson(*net->entry, std::nullopt, false, &deformed) + ",";
   } else if (r.roads_output == DeformRequest::RoadsOutput::positions) {
-    nlohmann::json flat = nlohmann::json::array();
-    for (const auto& p : deformed) {
-      flat.push_back(position(p)[0]);
-      flat.push_back(position(p)[1]);
-    }
-    out["positions"] = std::move(flat);
+    roads_text = R"({"positions":)";
+    append_flat_positions(roads_text, deformed);
+    roads_text += ',';
   }
   if (r.grid_output && prepared->grid) {
     const auto& g = *prepared->grid;
@@ -326,6 +331,7 @@ Response DeformService::handle(DeformApp app, const Request& req) {
   if (!net->entry->info.attribution.empty()) out["attribution"].push_back(net->entry->info.attribution);
 
   Response resp = json_response(out);
+  if (!roads_text.empty()) resp.body = roads_text + resp.body.substr(1);
   results_.put(result_key, std::make_shared<const std::string>(resp.body), resp.body.size());
   return resp;
 }

@@ -1,5 +1,7 @@
 #include "geojson.hpp"
 
+#include "json_out.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -167,12 +169,21 @@ bool segment_touches(geo::LonLat a, geo::LonLat b, const geo::BBox& box) {
   return true;
 }
 
-nlohmann::json roads_geojson(const RoadNetworkEntry& entry, const std::optional<geo::BBox>& bbox, bool with_nodes,
-                             const std::vector<geo::LonLat>* positions) {
+std::string roads_geojson(const RoadNetworkEntry& entry, const std::optional<geo::BBox>& bbox, bool with_nodes,
+                          const std::vector<geo::LonLat>* positions) {
   const auto& net = entry.net;
   auto at = [&](std::uint32_t node) { return positions ? (*positions)[node] : net.nodes[node].pos; };
-  nlohmann::json features = nlohmann::json::array();
+  std::string out;
+  out.reserve(net.edges.size() * (with_nodes ? 48 : 32) + net.ways.size() * 96);
+  out += R"({"type":"FeatureCollection","network":)";
+  append_string(out, entry.info.id);
+  out += R"(,"version":)";
+  append_integer(out, entry.info.version);
+  out += R"(,"attribution":)";
+  out += one_attribution(entry.info.attribution).dump();
+  out += R"(,"features":[)";
   std::size_t edges_out = 0;
+  bool first_feature = true;
   for (const auto& way : net.ways) {
     // Runs of consecutive segments that touch the bbox become one LineString each.
     std::size_t i = 1;
@@ -186,27 +197,37 @@ nlohmann::json roads_geojson(const RoadNetworkEntry& entry, const std::optional<
       }
       std::size_t first = i - 1;
       while (i < way.nodes.size() && touches(i)) ++i;
-      nlohmann::json coords = nlohmann::json::array();
-      nlohmann::json node_ids = nlohmann::json::array();
-      for (std::size_t k = first; k < i; ++k) {
-        coords.push_back(position(at(way.nodes[k])));
-        if (with_nodes) node_ids.push_back(net.nodes[way.nodes[k]].osm_id);
-      }
       edges_out += i - 1 - first;
-      nlohmann::json props = {{"way", way.osm_id}, {"highway", way.highway}};
-      if (!way.name.empty()) props["name"] = way.name;
-      if (with_nodes) props["nodes"] = std::move(node_ids);
-      features.push_back({{"type", "Feature"},
-                          {"geometry", {{"type", "LineString"}, {"coordinates", std::move(coords)}}},
-                          {"properties", std::move(props)}});
+      if (!first_feature) out += ',';
+      first_feature = false;
+      out += R"({"type":"Feature","geometry":{"type":"LineString","coordinates":[)";
+      for (std::size_t k = first; k < i; ++k) {
+        if (k > first) out += ',';
+        append_position(out, at(way.nodes[k]));
+      }
+      out += R"(]},"properties":{"way":)";
+      append_integer(out, way.osm_id);
+      out += R"(,"highway":)";
+      append_string(out, way.highway);
+      if (!way.name.empty()) {
+        out += R"(,"name":)";
+        append_string(out, way.name);
+      }
+      if (with_nodes) {
+        out += R"(,"nodes":[)";
+        for (std::size_t k = first; k < i; ++k) {
+          if (k > first) out += ',';
+          append_integer(out, net.nodes[way.nodes[k]].osm_id);
+        }
+        out += ']';
+      }
+      out += "}}";
     }
   }
-  return {{"type", "FeatureCollection"},
-          {"network", entry.info.id},
-          {"version", entry.info.version},
-          {"edges", edges_out},
-          {"attribution", one_attribution(entry.info.attribution)},
-          {"features", std::move(features)}};
+  out += R"(],"edges":)";
+  append_integer(out, static_cast<std::int64_t>(edges_out));
+  out += '}';
+  return out;
 }
 
 nlohmann::json roads_topology(const RoadNetworkEntry& entry) {

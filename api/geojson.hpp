@@ -34,8 +34,9 @@ nlohmann::json pois_geojson(const model::City& city, const std::optional<geo::BB
 // Ways as LineStrings (split where they leave `bbox`), with OSM way ids, road class, name and,
 // when `with_nodes`, the OSM node ids along each line. `positions` (one per node) replaces the
 // node positions, e.g. by deformed ones; the bbox still applies to the original positions.
-nlohmann::json roads_geojson(const RoadNetworkEntry& entry, const std::optional<geo::BBox>& bbox, bool with_nodes,
-                             const std::vector<geo::LonLat>* positions = nullptr);
+// Written as text directly (see json_out.hpp).
+std::string roads_geojson(const RoadNetworkEntry& entry, const std::optional<geo::BBox>& bbox, bool with_nodes,
+                          const std::vector<geo::LonLat>* positions = nullptr);
 
 // The network as arrays for clients that redraw it often: node positions (flat lon,lat), node
 // ids, and ways as node index lists. Deformation results in "positions" form follow this order.

@@ -30,8 +30,13 @@ void add_road_routes(Router& router, AppContext& ctx) {
     require_slug(id, "road network");
     auto entry = ctx.catalog.road_network(id);
     if (!entry) throw ApiError(404, "not_found", "no road network '" + id + "'", "id");
-    Response r = format == "topology" ? json_response(roads_topology(*entry))
-                                      : geojson_response(roads_geojson(*entry, bbox, with_nodes));
+    Response r;
+    if (format == "topology") {
+      r = json_response(roads_topology(*entry));
+    } else {
+      r.content_type = "application/geo+json";
+      r.body = roads_geojson(*entry, bbox, with_nodes);
+    }
     r.cacheable = true;  // no max-age: clients revalidate (cheap 304) and see imports at once
     return r;
   });

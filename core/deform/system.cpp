@@ -298,6 +298,7 @@ Prepared prepare_edges(const PlanarNetwork& net, const std::vector<std::uint32_t
   CGAL::convex_hull_2(indices.begin(), indices.end(), std::back_inserter(hull),
                       Traits(CGAL::make_property_map(pts)));
   for (auto i : hull) p.column[i] = {-1, -1};
+  for (auto g : guide_nodes) p.column[g] = {0, 0};  // a guide vertex must be free to follow its target
   int unknowns = number_unknowns(p.column);
 
   SystemBuilder b(p.rest, p.column);

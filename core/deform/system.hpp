@@ -68,7 +68,8 @@ Prepared prepare_grid(const PlanarNetwork& net, grid::Grid grid, const std::vect
                       const Weights& weights, Boundary boundary);
 
 // Edge-level baseline (van Dijk & Haunert): unknowns are road nodes; the convex hull's nodes
-// stay put (the map's outline), and a 1e-6 pull to rest keeps disconnected pieces determined.
+// stay put (the map's outline) unless they carry a guide, and a 1e-6 pull to rest keeps
+// disconnected pieces determined.
 Prepared prepare_edges(const PlanarNetwork& net, const std::vector<std::uint32_t>& guide_nodes, const Weights& weights);
 
 // A^T (b - fixed) for these targets.

@@ -13,7 +13,8 @@ constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
 // Counts of points per finest-level cell as a summed-area table: O(1) counts for any quad.
 class CellCounts {
  public:
-  CellCounts(int width, int height) : w_(width), h_(height), sum_((width + 1) * static_cast<std::size_t>(height + 1), 0) {}
+  CellCounts(int width, int height)
+      : w_(width), h_(height), sum_(static_cast<std::size_t>(width + 1) * static_cast<std::size_t>(height + 1), 0) {}
   void add(int x, int y) { ++sum_[index(x + 1, y + 1)]; }
   void finish() {
     for (int y = 1; y <= h_; ++y)
@@ -21,14 +22,14 @@ class CellCounts {
         sum_[index(x, y)] += sum_[index(x - 1, y)] + sum_[index(x, y - 1)] - sum_[index(x - 1, y - 1)];
   }
   // Points in cells [x0, x1) x [y0, y1).
-  long long count(int x0, int y0, int x1, int y1) const {
+  std::int64_t count(int x0, int y0, int x1, int y1) const {
     return sum_[index(x1, y1)] - sum_[index(x0, y1)] - sum_[index(x1, y0)] + sum_[index(x0, y0)];
   }
 
  private:
   std::size_t index(int x, int y) const { return static_cast<std::size_t>(y) * (w_ + 1) + x; }
   int w_, h_;
-  std::vector<long long> sum_;
+  std::vector<std::int32_t> sum_;  // point counts fit: callers pass fewer than 2^31 points
 };
 
 struct Lattice {

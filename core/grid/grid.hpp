@@ -75,6 +75,12 @@ struct Frame {
 };
 Frame frame_around(const std::vector<XY>& points, int cells_on_longer_side, double margin = 0.02);
 
+// Finest-level cells of a frame refined to `depth`: what building the grid costs in memory
+// (a few bytes per cell), so callers can refuse grids that are too fine before building them.
+inline std::uint64_t lattice_cells(const Frame& frame, int depth) {
+  return (static_cast<std::uint64_t>(frame.cols) << depth) * (static_cast<std::uint64_t>(frame.rows) << depth);
+}
+
 Grid build_uniform(const Frame& frame);
 // Refines each base cell while it holds more than `max_vertices` of `points`, or any of
 // `special` (guide vertices), up to `max_depth`; then balances to a restricted quadtree.

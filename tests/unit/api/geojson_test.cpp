@@ -71,11 +71,11 @@ TEST(GeoJsonOut, RoadsAreSplitAtTheBBox) {
   entry.net.nodes = {{1, {0.0, 0.0}}, {2, {1.0, 0.0}}, {3, {5.0, 0.0}}, {4, {6.0, 0.0}}, {5, {7.0, 0.0}}};
   entry.net.ways = {{9, "residential", "", {0, 1, 2, 3, 4}}};
   entry.net.edges = model::edges_of(entry.net.ways);
-  auto all = roads_geojson(entry, std::nullopt, true);
+  auto all = nlohmann::json::parse(roads_geojson(entry, std::nullopt, true));
   ASSERT_EQ(all["features"].size(), 1u);
   EXPECT_EQ(all["features"][0]["properties"]["nodes"].size(), 5u);
   // A box around x in [0, 0.5] and one around [6.5, 7]: two separate runs of the same way.
-  auto left = roads_geojson(entry, geo::BBox{-0.1, -0.1, 0.5, 0.1}, false);
+  auto left = nlohmann::json::parse(roads_geojson(entry, geo::BBox{-0.1, -0.1, 0.5, 0.1}, false));
   ASSERT_EQ(left["features"].size(), 1u);
   EXPECT_EQ(left["edges"], 1);
   EXPECT_FALSE(left["features"][0]["properties"].contains("nodes"));

@@ -1,0 +1,213 @@
+// The deformation endpoints against a real server: the three applications, the methods, the
+// factorization cache while "dragging", and bad input.
+
+#include "live_server.hpp"
+
+#include <gtest/gtest.h>
+
+namespace tourmap::test {
+namespace {
+
+class DeformApi : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    live = new LiveServer();
+    topology = new nlohmann::json(live->get_json("/api/v1/roads/west-oakland?format=topology"));
+  }
+  static void TearDownTestSuite() {
+    delete topology;
+    delete live;
+  }
+  static HttpResult post(const std::string& app, const nlohmann::json& body) {
+    return http_request(live->port(), "POST", "/api/v1/deform/" + app, {{"Content-Type", "application/json"}},
+                        body.dump());
+  }
+  static nlohmann::json ok(const std::string& app, const nlohmann::json& body) {
+    auto r = post(app, body);
+    EXPECT_EQ(r.status, 200) << r.body;
+    return nlohmann::json::parse(r.body);
+  }
+  // A path of `n` consecutive nodes along the longest way.
+  static std::vector<std::int64_t> route(std::size_t n) {
+    const nlohmann::json* best = nullptr;
+    for (const auto& w : (*topology)["ways"])
+      if (!best || w["nodes"].size() > (*best)["nodes"].size()) best = &w;
+    std::vector<std::int64_t> ids;
+    for (std::size_t i = 0; i < n && i < (*best)["nodes"].size(); ++i)
+      ids.push_back((*topology)["node_ids"][(*best)["nodes"][i].get<std::size_t>()]);
+    return ids;
+  }
+  static nlohmann::json focus_body(double lon, double lat) {
+    return {{"roads", "west-oakland"},
+            {"regions", {{{"center", {lon, lat}}, {"radius_m", 300}, {"scale", 3}}}},
+            {"output", {{"roads", "positions"}, {"grid", false}}}};
+  }
+  static LiveServer* live;
+  static nlohmann::json* topology;
+};
+LiveServer* DeformApi::live = nullptr;
+nlohmann::json* DeformApi::topology = nullptr;
+
+void expect_error(const HttpResult& r, int status, const std::string& field) {
+  EXPECT_EQ(r.status, status) << r.body;
+  if (r.status >= 400) {
+    EXPECT_EQ(error_of(r)["field"], field) << r.body;
+  }
+}
+
+TEST_F(DeformApi, FocusMovesRoadsAndReportsStats) {
+  auto out = ok("focus", {{"roads", "west-oakland"},
+                          {"regions", {{{"center", {-122.303, 37.811}}, {"radius_m", 400}, {"scale", 3}}}},
+                          {"grid", {{"kind", "adaptive"}, {"base", 10}, {"depth", 3}}}});
+  const auto& s = out["stats"];
+  EXPECT_GT(s["scaled_edges"].get<int>(), 0);
+  EXPECT_LT(s["residue"].get<double>(), s["residue_rest"].get<double>());
+  EXPECT_TRUE(s["converged"].get<bool>());
+  EXPECT_GT(s["unknowns"].get<int>(), 0);
+  EXPECT_GT(s["quads"].get<int>(), 0);
+  EXPECT_EQ(out["roads"]["type"], "FeatureCollection");
+  EXPECT_EQ(out["roads"]["features"].size(), 31u);
+  EXPECT_EQ(out["grid"]["before"].size(), out["grid"]["after"].size());
+  EXPECT_EQ(out["attribution"].size(), 1u);
+  // The roads moved: compare with the stored network.
+  auto plain = live->get_json("/api/v1/roads/west-oakland");
+  EXPECT_NE(plain["features"][0]["geometry"], out["roads"]["features"][0]["geometry"]);
+}
+
+TEST_F(DeformApi, DraggingReusesTheFactorization) {
+  auto first = ok("focus", focus_body(-122.305, 37.810));
+  auto second = ok("focus", focus_body(-122.300, 37.812));
+  EXPECT_EQ(second["stats"]["cache"], "hit");
+  EXPECT_EQ(second["stats"]["factor_ms"], 0.0);
+  EXPECT_NE(first["positions"], second["positions"]);
+  EXPECT_EQ(second["positions"].size(), 2 * (*topology)["node_ids"].size());
+  // The identical request again comes from the result cache.
+  auto repeat = post("focus", focus_body(-122.300, 37.812));
+  EXPECT_EQ(repeat.header("x-result-cache"), "hit");
+  EXPECT_EQ(nlohmann::json::parse(repeat.body)["positions"], second["positions"]);
+}
+
+TEST_F(DeformApi, EveryMethodAndSolverAnswers) {
+  for (nlohmann::json grid : {nlohmann::json{{"kind", "uniform"}, {"n", 20}}, nlohmann::json{{"kind", "edges"}},
+                              nlohmann::json{{"kind", "adaptive"}, {"depth", 2}}})
+    for (std::string solver : {"cholesky", "cg"}) {
+      auto body = focus_body(-122.303, 37.811);
+      body["grid"] = grid;
+      body["solver"] = solver;
+      body["relax"] = true;
+      body["check_crossings"] = true;
+      auto out = ok("focus", body);
+      EXPECT_EQ(out["stats"]["solver"], solver);
+      EXPECT_TRUE(out["stats"]["crossings_added"].is_number());
+      if (grid["kind"] == "edges") {
+        EXPECT_TRUE(out["grid"].is_null());
+      }
+    }
+}
+
+TEST_F(DeformApi, MentalMapPullsGuidesToTargets) {
+  auto ids = route(3);
+  auto node = ids[1];
+  // Move one vertex 100 m north (about 0.0009 degrees).
+  std::size_t index = 0;
+  while ((*topology)["node_ids"][index] != node) ++index;
+  double lon = (*topology)["positions"][2 * index], lat = (*topology)["positions"][2 * index + 1];
+  auto out = ok("mental", {{"roads", "west-oakland"},
+                           {"guides", {{{"vertex", node}, {"target", {lon, lat + 0.0009}}},
+                                       {{"point", {-122.31, 37.805}}, {"target", {-122.31, 37.806}}}}},
+                           {"grid", {{"kind", "edges"}}}});
+  ASSERT_EQ(out["guides"].size(), 2u);
+  for (const auto& g : out["guides"]) {
+    double moved = g["to"][1].get<double>() - g["from"][1].get<double>();
+    double wanted = g["target"][1].get<double>() - g["from"][1].get<double>();
+    EXPECT_GT(moved / wanted, 0.5) << g;  // most of the way there
+  }
+  EXPECT_EQ(out["stats"]["guides"], 2);
+}
+
+TEST_F(DeformApi, DestinationMapFollowsTheSketch) {
+  auto ids = route(5);
+  auto out = ok("destination", {{"roads", "west-oakland"},
+                                {"route", ids},
+                                {"sketch", {{-122.310, 37.805}, {-122.300, 37.805}, {-122.300, 37.815}}},
+                                {"simplify_m", 5}});
+  EXPECT_EQ(out["guides"].size(), ids.size());
+  EXPECT_LT(out["stats"]["residue"].get<double>(), out["stats"]["residue_rest"].get<double>());
+}
+
+TEST_F(DeformApi, InlineRoads) {
+  nlohmann::json fc = {{"type", "FeatureCollection"},
+                       {"features",
+                        {{{"type", "Feature"},
+                          {"properties", {{"highway", "residential"}}},
+                          {"geometry", {{"type", "LineString"},
+                                        {"coordinates", {{7.0, 43.0}, {7.01, 43.0}, {7.02, 43.01}}}}}},
+                         {{"type", "Feature"},
+                          {"properties", nullptr},
+                          {"geometry", {{"type", "LineString"}, {"coordinates", {{7.01, 43.0}, {7.01, 43.02}}}}}}}}};
+  auto out = ok("focus", {{"roads", fc}, {"regions", {{{"center", {7.01, 43.0}}, {"radius_m", 500}, {"scale", 2}}}}});
+  EXPECT_EQ(out["roads_id"], "inline");
+  EXPECT_EQ(out["stats"]["road_edges"], 3);
+}
+
+TEST_F(DeformApi, BadInputNamesTheField) {
+  auto focus = [](nlohmann::json regions) {
+    return nlohmann::json{{"roads", "west-oakland"}, {"regions", regions}};
+  };
+  nlohmann::json c = {-122.303, 37.811};
+  expect_error(post("focus", {{"regions", {{{"center", c}, {"radius_m", 100}, {"scale", 2}}}}}), 400, "roads");
+  expect_error(post("focus", {{"roads", "atlantis"}, {"regions", {{{"center", c}, {"radius_m", 100}, {"scale", 2}}}}}),
+               404, "roads");
+  expect_error(post("focus", {{"roads", 5}, {"regions", nlohmann::json::array()}}), 400, "roads");
+  expect_error(post("focus", focus(nlohmann::json::array())), 400, "regions");
+  expect_error(post("focus", focus({{{"center", c}, {"radius_m", 100}, {"scale", 0}}})), 400, "regions[0].scale");
+  expect_error(post("focus", focus({{{"center", c}, {"radius_m", 100}, {"scale", -2}}})), 400, "regions[0].scale");
+  expect_error(post("focus", focus({{{"center", c}, {"radius_m", 100}, {"scale", 51}}})), 400, "regions[0].scale");
+  expect_error(post("focus", focus({{{"center", c}, {"radius_m", 100}, {"scale", "3"}}})), 400, "regions[0].scale");
+  expect_error(post("focus", focus({{{"center", c}, {"scale", 3}}})), 400, "regions[0].radius_m");
+  expect_error(post("focus", focus({{{"center", {200, 0}}, {"radius_m", 10}, {"scale", 3}}})), 400, "regions[0].center");
+  expect_error(post("focus", focus({{{"polygon", {{0, 0}, {1, 1}, {1, 0}, {0, 1}}}, {"scale", 3}}})), 400,
+               "regions[0].polygon");  // self-intersecting
+  expect_error(post("focus", focus({{{"polygon", {{0, 0}, {1, 1}, {2, 2}}}, {"scale", 3}}})), 400,
+               "regions[0].polygon");  // zero area
+  expect_error(post("focus", focus({{{"center", c}, {"radius_m", 10}, {"polygon", {{0, 0}, {1, 0}, {1, 1}}}, {"scale", 2}}})),
+               400, "regions[0]");
+  auto body = focus({{{"center", c}, {"radius_m", 100}, {"scale", 2}}});
+  body["grid"] = {{"kind", "adaptive"}, {"depth", 9}};
+  expect_error(post("focus", body), 400, "grid.depth");
+  body["grid"] = {{"kind", "hexagonal"}};
+  expect_error(post("focus", body), 400, "grid.kind");
+  body["grid"] = {{"kind", "uniform"}, {"n", 256}, {"base", 3}};
+  expect_error(post("focus", body), 400, "grid.base");
+  body["grid"] = {{"kind", "adaptive"}, {"base", 64}, {"depth", 6}, {"c", 0}};
+  expect_error(post("focus", body), 413, "grid");  // finer than the lattice limit
+  body.erase("grid");
+  body["solver"] = "magic";
+  expect_error(post("focus", body), 400, "solver");
+  body.erase("solver");
+  body["colour"] = "red";
+  expect_error(post("focus", body), 400, "colour");
+
+  expect_error(post("mental", {{"roads", "west-oakland"}, {"guides", {{{"vertex", 1}, {"target", c}}}}}), 400,
+               "guides[0].vertex");  // no such node
+  expect_error(post("mental", {{"roads", "west-oakland"}, {"guides", {{{"target", c}}}}}), 400, "guides[0].vertex");
+  expect_error(post("mental", {{"roads", "west-oakland"}, {"guides", {{{"vertex", route(1)[0]}}}}}), 400,
+               "guides[0].target");
+  auto ids = route(4);
+  expect_error(post("destination", {{"roads", "west-oakland"}, {"route", ids}, {"sketch", {c}}}), 400, "sketch");
+  expect_error(post("destination", {{"roads", "west-oakland"}, {"route", {ids[0], ids[2]}}, {"sketch", {c, c}}}), 400,
+               "route[1]");  // not adjacent
+  expect_error(post("destination", {{"roads", "west-oakland"}, {"route", {ids[0], ids[1], ids[0]}}, {"sketch", {c, c}}}),
+               400, "route[2]");  // repeats
+  expect_error(post("destination", {{"roads", "west-oakland"}, {"route", {ids[0]}}, {"sketch", {c, c}}}), 400, "route");
+
+  nlohmann::json empty = {{"type", "FeatureCollection"}, {"features", nlohmann::json::array()}};
+  expect_error(post("focus", {{"roads", empty}, {"regions", {{{"center", c}, {"radius_m", 100}, {"scale", 2}}}}}), 400,
+               "roads");
+  auto nan = http_request(live->port(), "POST", "/api/v1/deform/focus", {{"Content-Type", "application/json"}},
+                          R"({"roads":"west-oakland","regions":[{"center":[NaN,1],"radius_m":1,"scale":2}]})");
+  expect_error(nan, 400, "body");
+}
+
+}  // namespace
+}  // namespace tourmap::test
