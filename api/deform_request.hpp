@@ -25,7 +25,9 @@ struct DeformLimits {
   int max_base = 64;
   int max_depth = 6;
   int max_uniform = 256;
-  std::size_t max_unknowns = 250000;
+  std::size_t max_unknowns = 250000;          // any method with CG, and the edge-level Cholesky
+  std::size_t max_direct_grid_unknowns = 60000;  // grid methods with Cholesky: factor time grows
+                                                 // fast (2D fill-in): about 2 s at 43K unknowns
   std::uint64_t max_lattice_cells = 1u << 22;  // finest-level cells of an adaptive grid (memory)
   std::size_t max_regions = 32;
   std::size_t max_guides = 2000;

@@ -152,9 +152,14 @@ std::shared_ptr<deform::Prepared> DeformService::prepared_for(const DeformReques
                          "grid");
         g = grid::build_adaptive(frame, planar.nodes, special, {r.grid.base, r.grid.depth, r.grid.c});
       }
-      if (2 * g.vertices.size() > limits_.max_unknowns)
-        throw ApiError(413, "too_large", "grid: " + std::to_string(g.vertices.size()) + " grid vertices exceed the limit of " +
-                                             std::to_string(limits_.max_unknowns / 2) + "; use a coarser grid", "grid");
+      std::size_t limit = r.solver == deform::SolverKind::cholesky ? limits_.max_direct_grid_unknowns : limits_.max_unknowns;
+      if (2 * g.vertices.size() > limit)
+        throw ApiError(413, "too_large",
+                       "grid: " + std::to_string(g.vertices.size()) + " grid vertices exceed the limit of " +
+                           std::to_string(limit / 2) + " for the " +
+                           (r.solver == deform::SolverKind::cholesky ? "Cholesky solver; use \"solver\": \"cg\" or" : "solvers; use") +
+                           " a coarser grid",
+                       "grid");
       p = std::make_shared<deform::Prepared>(
           deform::prepare_grid(planar, std::move(g), guide_nodes, r.weights, r.boundary));
     }
@@ -246,6 +251,13 @@ Response DeformService::handle(DeformApp app, const Request& req) {
 
   bool prepared_hit = false;
   auto prepared = prepared_for(r, *net, guide_nodes, &prepared_hit);
+  if (r.solver == deform::SolverKind::cholesky && prepared->grid &&
+      static_cast<std::size_t>(prepared->rest_unknowns.size()) > limits_.max_direct_grid_unknowns)
+    throw ApiError(413, "too_large",
+                   "grid: " + std::to_string(prepared->rest_unknowns.size()) +
+                       " unknowns are too many for the Cholesky solver (at most " +
+                       std::to_string(limits_.max_direct_grid_unknowns) + "); use \"solver\": \"cg\" or a coarser grid",
+                   "grid");
   deform::RunOptions options;
   options.solve.kind = r.solver;
   options.solve.max_iterations = r.max_iterations;

@@ -181,6 +181,8 @@ TEST_F(DeformApi, BadInputNamesTheField) {
   expect_error(post("focus", body), 400, "grid.base");
   body["grid"] = {{"kind", "adaptive"}, {"base", 64}, {"depth", 6}, {"c", 0}};
   expect_error(post("focus", body), 413, "grid");  // finer than the lattice limit
+  body["grid"] = {{"kind", "uniform"}, {"n", 256}};
+  expect_error(post("focus", body), 413, "grid");  // too big for the direct solver
   body.erase("grid");
   body["solver"] = "magic";
   expect_error(post("focus", body), 400, "solver");
