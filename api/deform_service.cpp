@@ -176,18 +176,15 @@ std::shared_ptr<deform::Prepared> DeformService::prepared_for(const DeformReques
   }
 }
 
-Response DeformService::handle(DeformApp app, const Request& req) {
-  auto started = Clock::now();
-  auto body = parse_json_body(req);
-  auto r = parse_deform_request(app, body, limits_);
-  auto net = network_for(r);
-  const auto& planar = net->planar;
-  const auto& transform = planar.transform;
+namespace {
 
-  // The request's inputs, in map units.
+// The request's inputs as deformation targets in map units; validation errors name the field.
+deform::Targets targets_for(const DeformRequest& r, const DeformNetwork& net, std::size_t* scaled_edges) {
+  const auto& planar = net.planar;
+  const auto& transform = planar.transform;
   deform::Targets targets;
-  std::size_t scaled_edges = 0;
-  if (app == DeformApp::focus) {
+  *scaled_edges = 0;
+  if (r.app == DeformApp::focus) {
     std::vector<deform::FocusRegion> regions;
     for (const auto& in : r.regions) {
       deform::FocusRegion fr;
@@ -201,31 +198,30 @@ Response DeformService::handle(DeformApp app, const Request& req) {
       regions.push_back(std::move(fr));
     }
     targets.edge_scale = deform::focus_edge_scales(planar, regions);
-    for (double s : targets.edge_scale) scaled_edges += s != 1.0;
+    for (double s : targets.edge_scale) *scaled_edges += s != 1.0;
   }
   auto node_index = [&](std::int64_t id, const std::string& field) {
-    auto it = net->node_by_id.find(id);
-    if (it == net->node_by_id.end())
-      throw bad(field, "no road vertex " + std::to_string(id) + " in this network");
+    auto it = net.node_by_id.find(id);
+    if (it == net.node_by_id.end()) throw bad(field, "no road vertex " + std::to_string(id) + " in this network");
     return it->second;
   };
   std::vector<deform::Guide> guides;
-  if (app == DeformApp::mental) {
+  if (r.app == DeformApp::mental) {
     for (std::size_t i = 0; i < r.guides.size(); ++i) {
       const auto& g = r.guides[i];
       auto field = "guides[" + std::to_string(i) + "]";
-      std::uint32_t node = g.vertex ? node_index(*g.vertex, field + ".vertex") : net->index->nearest(transform.to_map(*g.point));
+      auto node = g.vertex ? node_index(*g.vertex, field + ".vertex") : net.index->nearest(transform.to_map(*g.point));
       guides.push_back({node, transform.to_map(g.target)});
     }
   }
-  if (app == DeformApp::destination) {
+  if (r.app == DeformApp::destination) {
     std::vector<std::uint32_t> route;
     std::unordered_set<std::uint32_t> seen;
     for (std::size_t i = 0; i < r.route.size(); ++i) {
       auto field = "route[" + std::to_string(i) + "]";
       auto node = node_index(r.route[i], field);
       if (!seen.insert(node).second) throw bad(field, "road vertex " + std::to_string(r.route[i]) + " repeats");
-      if (!route.empty() && !net->has_edge(route.back(), node))
+      if (!route.empty() && !net.has_edge(route.back(), node))
         throw bad(field, "road vertices " + std::to_string(r.route[i - 1]) + " and " + std::to_string(r.route[i]) +
                              " are not joined by a road edge");
       route.push_back(node);
@@ -236,11 +232,61 @@ Response DeformService::handle(DeformApp app, const Request& req) {
     guides = deform::route_to_sketch(planar, route, sketch);
   }
   auto sorted = deform::sorted_guides(guides);
-  if (!sorted) throw bad(app == DeformApp::mental ? "guides" : "route", "two guides pull the same road vertex");
+  if (!sorted) throw bad(r.app == DeformApp::mental ? "guides" : "route", "two guides pull the same road vertex");
   targets.guides = std::move(*sorted);
-  auto guide_nodes = deform::guide_nodes(targets.guides);
+  return targets;
+}
 
-  // Whole-result cache.
+nlohmann::json grid_json(const grid::Grid& g, const std::vector<geo::XY>& deformed, const DeformNetwork& net) {
+  nlohmann::json quads = nlohmann::json::array(), before = nlohmann::json::array(), after = nlohmann::json::array(),
+                 tj = nlohmann::json::array();
+  for (const auto& q : g.quads) quads.push_back({q.corners[0], q.corners[1], q.corners[2], q.corners[3]});
+  for (std::size_t i = 0; i < g.vertices.size(); ++i) {
+    before.push_back(position(net.unproject(g.vertices[i])));
+    after.push_back(position(net.unproject(deformed[i])));
+  }
+  for (const auto& t : g.tjunctions) tj.push_back({t.vertex, t.coarse_quad});
+  return {{"quads", std::move(quads)}, {"before", std::move(before)}, {"after", std::move(after)}, {"tjunctions", std::move(tj)}};
+}
+
+nlohmann::json stats_json(const DeformRequest& r, const DeformNetwork& net, const deform::Prepared& p,
+                          const deform::Targets& targets, const deform::RunResult& result, bool prepared_hit,
+                          std::size_t scaled_edges) {
+  const auto& s = result.solve;
+  return {{"method", r.grid.describe()},
+          {"solver", s.kind == deform::SolverKind::cg ? "cg" : "cholesky"},
+          {"residue", result.residue},
+          {"residue_rest", deform::residue(net.planar, targets, net.planar.nodes)},
+          {"road_edges", net.planar.edges.size()},
+          {"scaled_edges", scaled_edges},
+          {"guides", targets.guides.size()},
+          {"unknowns", p.rest_unknowns.size()},
+          {"quads", p.grid ? p.grid->quads.size() : 0},
+          {"grid_edges", p.grid ? grid::count_grid_edges(*p.grid) : 0},
+          {"support_edges", p.support_edges},
+          {"iterations", s.iterations},
+          {"converged", s.converged},
+          {"relative_residual", s.relative_residual},
+          {"foldovers", result.inverted_quads},
+          {"crossings_added", result.crossings_added ? nlohmann::json(*result.crossings_added) : nlohmann::json(nullptr)},
+          {"relax_iterations", result.relax_iterations},
+          {"cache", prepared_hit ? "hit" : "miss"},
+          {"assembly_ms", prepared_hit ? 0.0 : p.assembly_ms},
+          {"factor_ms", s.factor_ms},
+          {"solve_ms", s.solve_ms},
+          {"rhs_ms", result.rhs_ms},
+          {"place_ms", result.place_ms}};
+}
+
+}  // namespace
+
+Response DeformService::handle(DeformApp app, const Request& req) {
+  auto started = Clock::now();
+  auto r = parse_deform_request(app, parse_json_body(req), limits_);
+  auto net = network_for(r);
+  std::size_t scaled_edges = 0;
+  auto targets = targets_for(r, *net, &scaled_edges);
+
   std::string result_key = net->key + "|" + app_name(app) + "|" + r.canonical;
   if (auto hit = results_.get(result_key)) {
     Response cached;
@@ -250,7 +296,7 @@ Response DeformService::handle(DeformApp app, const Request& req) {
   }
 
   bool prepared_hit = false;
-  auto prepared = prepared_for(r, *net, guide_nodes, &prepared_hit);
+  auto prepared = prepared_for(r, *net, deform::guide_nodes(targets.guides), &prepared_hit);
   if (r.solver == deform::SolverKind::cholesky && prepared->grid &&
       static_cast<std::size_t>(prepared->rest_unknowns.size()) > limits_.max_direct_grid_unknowns)
     throw ApiError(413, "too_large",
@@ -267,15 +313,26 @@ Response DeformService::handle(DeformApp app, const Request& req) {
   options.count_crossings = r.check_crossings;
   std::optional<std::size_t> rest_crossings;
   if (r.check_crossings) rest_crossings = net->rest_crossings();
-  auto result = deform::run(*prepared, planar, targets, options, rest_crossings);
+  auto result = deform::run(*prepared, net->planar, targets, options, rest_crossings);
 
-  // Response.
   auto out_start = Clock::now();
   std::vector<geo::LonLat> deformed;
   deformed.reserve(result.nodes.size());
   for (const auto& p : result.nodes) deformed.push_back(net->unproject(p));
 
   nlohmann::json out = {{"app", app_name(app)}, {"roads_id", net->entry->info.id}};
+  out["grid"] = r.grid_output && prepared->grid ? grid_json(*prepared->grid, result.points, *net) : nlohmann::json(nullptr);
+  if (!targets.guides.empty()) {
+    nlohmann::json list = nlohmann::json::array();
+    for (const auto& g : targets.guides)
+      list.push_back({{"vertex", net->entry->net.nodes[g.node].osm_id},
+                      {"from", position(net->rest_lonlat[g.node])},
+                      {"target", position(net->unproject(g.target))},
+                      {"to", position(deformed[g.node])}});
+    out["guides"] = std::move(list);
+  }
+  out["attribution"] = nlohmann::json::array();
+  if (!net->entry->info.attribution.empty()) out["attribution"].push_back(net->entry->info.attribution);
   // The big part (roads or positions) is written as text and spliced in front of the rest.
   std::string roads_text;
   if (r.roads_output == DeformRequest::RoadsOutput::geojson) {
@@ -285,62 +342,10 @@ Response DeformService::handle(DeformApp app, const Request& req) {
     append_flat_positions(roads_text, deformed);
     roads_text += ',';
   }
-  if (r.grid_output && prepared->grid) {
-    const auto& g = *prepared->grid;
-    nlohmann::json quads = nlohmann::json::array(), before = nlohmann::json::array(),
-                   after = nlohmann::json::array(), tj = nlohmann::json::array();
-    for (const auto& q : g.quads) quads.push_back({q.corners[0], q.corners[1], q.corners[2], q.corners[3]});
-    for (std::size_t i = 0; i < g.vertices.size(); ++i) {
-      before.push_back(position(net->unproject(g.vertices[i])));
-      after.push_back(position(net->unproject(result.points[i])));
-    }
-    for (const auto& t : g.tjunctions) tj.push_back({t.vertex, t.coarse_quad});
-    out["grid"] = {{"quads", std::move(quads)}, {"before", std::move(before)}, {"after", std::move(after)},
-                   {"tjunctions", std::move(tj)}};
-  } else {
-    out["grid"] = nullptr;
-  }
-  if (!targets.guides.empty()) {
-    nlohmann::json list = nlohmann::json::array();
-    for (const auto& g : targets.guides)
-      list.push_back({{"vertex", net->entry->net.nodes[g.node].osm_id},
-                      {"from", position(net->rest_lonlat[g.node])},
-                      {"target", position(transform.to_lonlat(g.target))},
-                      {"to", position(deformed[g.node])}});
-    out["guides"] = std::move(list);
-  }
-
-  double rest_residue = deform::residue(planar, targets, planar.nodes);
-  const auto& s = result.solve;
-  nlohmann::json stats = {
-      {"method", r.grid.describe()},
-      {"solver", s.kind == deform::SolverKind::cg ? "cg" : "cholesky"},
-      {"residue", result.residue},
-      {"residue_rest", rest_residue},
-      {"road_edges", planar.edges.size()},
-      {"scaled_edges", scaled_edges},
-      {"guides", targets.guides.size()},
-      {"unknowns", prepared->rest_unknowns.size()},
-      {"quads", prepared->grid ? prepared->grid->quads.size() : 0},
-      {"grid_edges", prepared->grid ? grid::count_grid_edges(*prepared->grid) : 0},
-      {"support_edges", prepared->support_edges},
-      {"iterations", s.iterations},
-      {"converged", s.converged},
-      {"relative_residual", s.relative_residual},
-      {"foldovers", result.inverted_quads},
-      {"crossings_added", result.crossings_added ? nlohmann::json(*result.crossings_added) : nlohmann::json(nullptr)},
-      {"relax_iterations", result.relax_iterations},
-      {"cache", prepared_hit ? "hit" : "miss"},
-      {"assembly_ms", prepared_hit ? 0.0 : prepared->assembly_ms},
-      {"factor_ms", s.factor_ms},
-      {"solve_ms", s.solve_ms},
-      {"rhs_ms", result.rhs_ms},
-      {"place_ms", result.place_ms},
-      {"output_ms", ms_since(out_start)},
-      {"total_ms", ms_since(started)}};
+  auto stats = stats_json(r, *net, *prepared, targets, result, prepared_hit, scaled_edges);
+  stats["output_ms"] = ms_since(out_start);
+  stats["total_ms"] = ms_since(started);
   out["stats"] = std::move(stats);
-  out["attribution"] = nlohmann::json::array();
-  if (!net->entry->info.attribution.empty()) out["attribution"].push_back(net->entry->info.attribution);
 
   Response resp = json_response(out);
   if (!roads_text.empty()) resp.body = roads_text + resp.body.substr(1);
