@@ -6,6 +6,7 @@
 #include "roads_in.hpp"
 
 #include "grid/grid.hpp"
+#include "util/hash.hpp"
 
 #include <chrono>
 #include <cstdio>
@@ -21,16 +22,6 @@ std::uint64_t edge_key(std::uint32_t a, std::uint32_t b) {
   return (static_cast<std::uint64_t>(a) << 32) | b;
 }
 
-std::string fnv_hex(const std::string& s) {
-  std::uint64_t h = 1469598103934665603ull;
-  for (unsigned char c : s) {
-    h ^= c;
-    h *= 1099511628211ull;
-  }
-  char buf[17];
-  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
-  return buf;
-}
 
 ApiError bad(const std::string& field, const std::string& message) {
   return ApiError(400, "invalid_parameter", field + ": " + message, field);
@@ -79,7 +70,7 @@ DeformService::CacheStats DeformService::cache_stats() const {
 
 std::shared_ptr<const DeformNetwork> DeformService::network_for(const DeformRequest& r) {
   if (r.roads_inline) {
-    auto key = "inline:" + fnv_hex(r.roads_inline->dump());
+    auto key = "inline:" + util::hex64(util::fnv1a64(r.roads_inline->dump()));
     if (auto hit = networks_.get(key)) return *hit;
     auto entry = std::make_shared<RoadNetworkEntry>();
     entry->net = parse_inline_roads(*r.roads_inline, "roads", limits_.max_inline_vertices);

@@ -2,7 +2,8 @@
 
 #include "gzip.hpp"
 
-#include <cstdio>
+#include "util/hash.hpp"
+
 
 namespace tourmap::server {
 namespace {
@@ -21,16 +22,7 @@ bool has_header(const api::Response& r, const char* name) {
 
 }  // namespace
 
-std::string weak_etag(const std::string& body) {
-  std::uint64_t h = 1469598103934665603ull;
-  for (unsigned char c : body) {
-    h ^= c;
-    h *= 1099511628211ull;
-  }
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "W/\"%016llx\"", static_cast<unsigned long long>(h));
-  return buf;
-}
+std::string weak_etag(const std::string& body) { return "W/\"" + util::hex64(util::fnv1a64(body)) + "\""; }
 
 bool etag_matches(const std::string& header, const std::string& etag) {
   if (header.empty()) return false;

@@ -4,9 +4,9 @@
 #include "load/metro_load.hpp"
 #include "load/osm_roads.hpp"
 #include "load/poi_load.hpp"
+#include "util/hash.hpp"
 
 #include <chrono>
-#include <cstdio>
 #include <stdexcept>
 
 namespace tourmap::store {
@@ -40,18 +40,9 @@ MetroFormat parse_metro_format(const std::string& name) {
 }
 
 std::string fingerprint_files(const std::vector<std::string>& files) {
-  std::uint64_t h = 1469598103934665603ull;
-  for (const auto& f : files) {
-    for (unsigned char c : load::read_file(f)) {
-      h ^= c;
-      h *= 1099511628211ull;
-    }
-    h ^= 0xff;  // file separator
-    h *= 1099511628211ull;
-  }
-  char buf[17];
-  std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h));
-  return buf;
+  std::uint64_t h = util::kFnvOffset;
+  for (const auto& f : files) h = util::fnv1a64("\xff", util::fnv1a64(load::read_file(f), h));  // file separator
+  return util::hex64(h);
 }
 
 ImportResult import_metro(Db& db, const MetroImport& req) {
