@@ -2,6 +2,7 @@ import './styles/base.css';
 import './styles/shell.css';
 import './styles/map.css';
 import './styles/panels.css';
+import './styles/deform.css';
 import { EventStream } from './api/events';
 import { navigate, routeHash, watchRoute, type Route, type ViewName } from './router';
 import { Shell } from './ui/shell';

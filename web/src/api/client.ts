@@ -1,11 +1,15 @@
 import type {
   CityDetail,
   CitySummary,
+  DeformBody,
+  DeformKind,
+  DeformResponse,
   MetroCollection,
   PoiCollection,
   PoiFeature,
   RoadCollection,
   RoadNetworkSummary,
+  RoadTopology,
 } from './types';
 
 const API_ROOT = '/api/v1';
@@ -41,18 +45,22 @@ async function errorFrom(response: Response): Promise<ApiError> {
   return new ApiError(response.status, 'http_error', `${response.status} ${response.statusText || 'error'}`);
 }
 
-async function getJson<T>(path: string, signal?: AbortSignal): Promise<T> {
+async function requestJson<T>(path: string, init: RequestInit): Promise<T> {
   let response: Response;
   try {
-    // no-cache: revalidate with the ETag every time, so data imported a moment ago is never
-    // hidden behind the API's max-age.
-    response = await fetch(API_ROOT + path, { signal, cache: 'no-cache', headers: { Accept: 'application/json' } });
+    response = await fetch(API_ROOT + path, { ...init, headers: { Accept: 'application/json', ...init.headers } });
   } catch (error) {
     if (isAbort(error)) throw error;
     throw new ApiError(0, 'network', 'The tourmap server cannot be reached. Check your connection and try again.');
   }
   if (!response.ok) throw await errorFrom(response);
   return (await response.json()) as T;
+}
+
+function getJson<T>(path: string, signal?: AbortSignal): Promise<T> {
+  // no-cache: revalidate with the ETag every time, so data imported a moment ago is never
+  // hidden behind the API's max-age.
+  return requestJson<T>(path, { signal, cache: 'no-cache' });
 }
 
 const segment = encodeURIComponent;
@@ -90,4 +98,19 @@ export function fetchRoadNetworks(signal?: AbortSignal): Promise<RoadNetworkSumm
 
 export function fetchRoads(id: string, signal?: AbortSignal): Promise<RoadCollection> {
   return getJson<RoadCollection>(`/roads/${segment(id)}`, signal);
+}
+
+/** The road network as nodes and ways: what the Deform view draws and routes on. */
+export function fetchRoadTopology(id: string, signal?: AbortSignal): Promise<RoadTopology> {
+  return getJson<RoadTopology>(`/roads/${segment(id)}?format=topology`, signal);
+}
+
+/** POST /api/v1/deform/{kind}. */
+export function postDeform(kind: DeformKind, body: DeformBody, signal?: AbortSignal): Promise<DeformResponse> {
+  return requestJson<DeformResponse>(`/deform/${kind}`, {
+    method: 'POST',
+    signal,
+    headers: { 'Content-Type': 'application/json' },
+    body: JSON.stringify(body),
+  });
 }

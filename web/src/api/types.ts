@@ -136,3 +136,88 @@ export type ServerEvent =
   | { type: 'catalog'; catalog_version: number; last_import?: LastImport }
   | { type: 'pong' }
   | { type: 'error'; code: string; message: string };
+
+/** GET /api/v1/roads/{id}?format=topology: nodes once each, ways as lists of node indices. */
+export interface RoadTopology {
+  network: string;
+  version: number;
+  bbox: BBox;
+  /** [lon, lat, lon, lat, ...], one pair per node */
+  positions: number[];
+  /** OSM node id per node */
+  node_ids: number[];
+  ways: { way: number; highway: string; name?: string; nodes: number[] }[];
+  attribution: string[];
+}
+
+export type DeformKind = 'focus' | 'mental' | 'destination';
+
+export type GridOption =
+  | { kind: 'adaptive'; base: number; depth: number; c: number }
+  | { kind: 'uniform'; n: number }
+  | { kind: 'edges' };
+
+export type FocusRegion = { center: LonLat; radius_m: number; scale: number } | { polygon: LonLat[]; scale: number };
+
+export type Guide = { vertex: number; target: LonLat } | { point: LonLat; target: LonLat };
+
+/** The parts of a deformation request every kind shares (DeformCommon in the API). */
+export interface DeformCommon {
+  roads: string;
+  grid: GridOption;
+  solver: 'cholesky' | 'cg';
+  relax: boolean;
+  output: { roads: 'positions' | 'geojson' | 'none'; grid: boolean };
+}
+
+export type DeformBody = DeformCommon &
+  (
+    | { regions: FocusRegion[] }
+    | { guides: Guide[] }
+    | { route: number[]; sketch: LonLat[]; simplify_m: number }
+  );
+
+export interface DeformGrid {
+  /** Corner vertex indices per quad, counter-clockwise. */
+  quads: [number, number, number, number][];
+  before: LonLat[];
+  after: LonLat[];
+  /** [grid vertex, coarse quad] */
+  tjunctions: [number, number][];
+}
+
+export interface DeformStats {
+  residue: number;
+  residue_rest: number;
+  method: string;
+  solver: string;
+  unknowns: number;
+  quads: number;
+  grid_edges: number;
+  support_edges: number;
+  iterations: number;
+  converged: boolean;
+  foldovers: number;
+  crossings_added: number | null;
+  cache: 'hit' | 'miss';
+  assembly_ms: number;
+  factor_ms: number;
+  solve_ms: number;
+  rhs_ms: number;
+  place_ms: number;
+  output_ms: number;
+  total_ms: number;
+  scaled_edges: number;
+  guides: number;
+  road_edges: number;
+}
+
+export interface DeformResponse {
+  app: string;
+  roads_id: string;
+  positions?: number[];
+  grid: DeformGrid | null;
+  guides?: { vertex: number; from: LonLat; target: LonLat; to: LonLat }[];
+  stats: DeformStats;
+  attribution: string[];
+}

@@ -3,7 +3,7 @@ import type { LonLat } from '../api/types';
 const EARTH_RADIUS_M = 6371008.8;
 
 /** Great-circle distance in metres (haversine). */
-function distanceMeters([lon1, lat1]: LonLat, [lon2, lat2]: LonLat): number {
+export function distanceMeters([lon1, lat1]: LonLat, [lon2, lat2]: LonLat): number {
   const rad = Math.PI / 180;
   const dLat = (lat2 - lat1) * rad;
   const dLon = (lon2 - lon1) * rad;

@@ -10,6 +10,11 @@ function mercator([lon, lat]: LonLat): [number, number] {
   return [(lon + 180) / 360, 0.5 - Math.log((1 + sin) / (1 - sin)) / (4 * Math.PI)];
 }
 
+function inverseMercator(x: number, y: number): LonLat {
+  const lat = (Math.atan(Math.sinh(Math.PI * (1 - 2 * y))) * 180) / Math.PI;
+  return [x * 360 - 180, lat];
+}
+
 /**
  * A map's own coordinate frame: Web Mercator moved to the bbox's north-west corner and scaled
  * so the bbox's longer side spans `size` units. SVG coordinates then stay small numbers and
@@ -21,6 +26,8 @@ export interface Frame {
   readonly width: number;
   readonly height: number;
   project(position: LonLat): [number, number];
+  /** The position at a point of the frame: project's inverse. */
+  unproject(x: number, y: number): LonLat;
 }
 
 export function frameFor(bbox: BBox, size = 1000): Frame {
@@ -36,6 +43,9 @@ export function frameFor(bbox: BBox, size = 1000): Frame {
     project(position) {
       const [x, y] = mercator(position);
       return [(x - west) * scale, (y - north) * scale];
+    },
+    unproject(x, y) {
+      return inverseMercator(x / scale + west, y / scale + north);
     },
   };
 }

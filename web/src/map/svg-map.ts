@@ -34,6 +34,12 @@ const KEY_PAN_PX = 80;
 const KEY_ZOOM = 1.5;
 const REVEAL_MARGIN_PX = 48;
 
+/** d3-zoom's own filter: no secondary buttons, no ctrl-drag (ctrl-wheel zooms). */
+function defaultFilter(event: Event): boolean {
+  const { ctrlKey, button } = event as MouseEvent;
+  return (!ctrlKey || event.type === 'wheel') && !button;
+}
+
 function reducedMotion(): boolean {
   return window.matchMedia('(prefers-reduced-motion: reduce)').matches;
 }
@@ -57,8 +63,11 @@ export class SvgMap {
   private followsFit = true;
   private readonly settleListeners = new Set<() => void>();
   private insets: () => Insets = () => NO_INSETS;
+  private readonly renderListeners = new Set<() => void>();
+  private gestureFilter: (event: Event) => boolean = () => true;
 
-  constructor(label: string) {
+  /** `doubleClickZoom: false` leaves double clicks to the view (map editors use clicks). */
+  constructor(label: string, options: { doubleClickZoom?: boolean } = {}) {
     this.element = document.createElement('div');
     this.element.className = 'map';
     this.svg = svg('svg', { class: 'map-svg', role: 'img', 'aria-label': label, tabindex: 0 });
@@ -73,8 +82,12 @@ export class SvgMap {
         if (event.sourceEvent) this.followsFit = false;
         this.requestRender();
       })
-      .on('end', () => this.settleListeners.forEach((listener) => listener()));
+      .on('end', () => this.settleListeners.forEach((listener) => listener()))
+      .filter((event: Event) => defaultFilter(event) && this.gestureFilter(event))
+      // A click that wobbles a few pixels is still a click, not a pan.
+      .clickDistance(4);
     select(this.svg).call(this.zoomBehavior);
+    if (options.doubleClickZoom === false) select(this.svg).on('dblclick.zoom', null);
     this.svg.addEventListener('keydown', (event) => this.onKey(event));
 
     // Also fires when a hidden view is shown again.
@@ -126,6 +139,31 @@ export class SvgMap {
   /** Screen position (CSS pixels within the map) of a projected point. */
   toScreen(x: number, y: number): [number, number] {
     return this.transform.apply([x, y]);
+  }
+
+  /** The projected point at a screen position: toScreen's inverse. */
+  toFrame(sx: number, sy: number): [number, number] {
+    return this.transform.invert([sx, sy]);
+  }
+
+  /** The current pan and zoom: screen = frame × k + (x, y). */
+  get view(): { x: number; y: number; k: number } {
+    const { x, y, k } = this.transform;
+    return { x, y, k };
+  }
+
+  /** Calls the listener on every rendered frame (after pans, zooms and requestRender). */
+  onRender(listener: () => void): () => void {
+    this.renderListeners.add(listener);
+    return () => this.renderListeners.delete(listener);
+  }
+
+  /**
+   * Asked before a mouse, touch or wheel event may start a pan or zoom; false leaves the
+   * gesture to the view (dragging a handle, drawing a line).
+   */
+  setGestureFilter(filter: (event: Event) => boolean): void {
+    this.gestureFilter = filter;
   }
 
   /** Screen pixels per frame unit. */
@@ -206,6 +244,7 @@ export class SvgMap {
     const { x, y, k } = this.transform;
     this.world.setAttribute('transform', `translate(${x},${y}) scale(${k})`);
     for (const anchor of this.anchors) this.place(anchor);
+    this.renderListeners.forEach((listener) => listener());
   }
 
   private place(anchor: Anchor): void {
