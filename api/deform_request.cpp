@@ -172,7 +172,7 @@ DeformRequest parse_deform_request(DeformApp app, const nlohmann::json& body, co
   r.app = app;
   r.canonical = body.dump();
   std::vector<const char*> common = {"roads", "grid", "solver", "weights", "boundary", "cg", "time_limit_ms",
-                                     "relax", "check_crossings", "output"};
+                                     "relax", "check_crossings", "output", "map_points"};
   std::vector<const char*> specific;
   if (app == DeformApp::focus) specific = {"regions"};
   if (app == DeformApp::mental) specific = {"guides"};
@@ -212,6 +212,11 @@ DeformRequest parse_deform_request(DeformApp app, const nlohmann::json& body, co
   if (auto* v = member(body, "relax")) r.relax = boolean(*v, "relax");
   if (auto* v = member(body, "check_crossings")) r.check_crossings = boolean(*v, "check_crossings");
   if (auto* v = member(body, "output")) parse_output(*v, r);
+  if (auto* v = member(body, "map_points")) {
+    const auto& pts = array_of(*v, "map_points", 0, limits.max_map_points);
+    for (std::size_t i = 0; i < pts.size(); ++i)
+      r.map_points.push_back(parse_position(pts[i], "map_points[" + std::to_string(i) + "]"));
+  }
 
   if (app == DeformApp::focus) {
     const auto* regions = member(body, "regions");

@@ -32,6 +32,7 @@ struct DeformLimits {
   std::size_t max_regions = 32;
   std::size_t max_guides = 2000;
   std::size_t max_route = 20000;
+  std::size_t max_map_points = 10000;
   std::size_t max_polygon_vertices = 10000;
   std::size_t max_inline_vertices = 50000;
   double max_scale = 50.0;
@@ -75,6 +76,7 @@ struct DeformRequest {
   bool check_crossings = false;
   enum class RoadsOutput { geojson, positions, none } roads_output = RoadsOutput::geojson;
   bool grid_output = true;
+  std::vector<geo::LonLat> map_points;  // original-map points to report where they land
 
   std::vector<FocusRegionInput> regions;  // focus
   std::vector<GuideInput> guides;         // mental

@@ -222,9 +222,7 @@ deform::Targets targets_for(const DeformRequest& r, const DeformNetwork& net, st
     sketch = deform::simplify_polyline(sketch, r.simplify_m / transform.metres_per_unit);
     guides = deform::route_to_sketch(planar, route, sketch);
   }
-  auto sorted = deform::sorted_guides(guides);
-  if (!sorted) throw bad(r.app == DeformApp::mental ? "guides" : "route", "two guides pull the same road vertex");
-  targets.guides = std::move(*sorted);
+  targets.guides = deform::sorted_guides(guides);
   return targets;
 }
 
@@ -311,7 +309,15 @@ Response DeformService::handle(DeformApp app, const Request& req) {
   deformed.reserve(result.nodes.size());
   for (const auto& p : result.nodes) deformed.push_back(net->unproject(p));
 
-  nlohmann::json out = {{"app", app_name(app)}, {"roads_id", net->entry->info.id}};
+  nlohmann::json out = {{"app", app_name(app)}, {"roads_id", net->entry->info.id}, {"version", net->entry->info.version}};
+  if (!r.map_points.empty()) {
+    std::vector<geo::XY> queries;
+    for (const auto& p : r.map_points) queries.push_back(net->planar.transform.to_map(p));
+    nlohmann::json mapped = nlohmann::json::array();
+    for (const auto& p : deform::map_points(*prepared, result.points, result.nodes, net->planar.nodes, *net->index, queries))
+      mapped.push_back(position(net->unproject(p)));
+    out["mapped_points"] = std::move(mapped);
+  }
   out["grid"] = r.grid_output && prepared->grid ? grid_json(*prepared->grid, result.points, *net) : nlohmann::json(nullptr);
   if (!targets.guides.empty()) {
     nlohmann::json list = nlohmann::json::array();

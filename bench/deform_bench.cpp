@@ -94,12 +94,8 @@ Targets mental_workload(const PlanarNetwork& net) {
     XY target{mid.x + 150 * std::cos(a), mid.y + 150 * std::sin(a)};
     guides.push_back({index.nearest(target), target});
   }
-  // Two circle points may snap to one vertex: keep the first.
-  std::vector<Guide> unique;
-  for (const auto& g : guides)
-    if (std::none_of(unique.begin(), unique.end(), [&](const Guide& u) { return u.node == g.node; })) unique.push_back(g);
   Targets t;
-  t.guides = *sorted_guides(unique);
+  t.guides = sorted_guides(guides);  // two circle points may snap to one vertex: the later wins
   return t;
 }
 

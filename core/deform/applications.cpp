@@ -1,5 +1,6 @@
 #include "deform/applications.hpp"
 
+#include "deform/system.hpp"
 #include "geo/polygon.hpp"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -134,17 +135,36 @@ std::vector<Guide> route_to_sketch(const PlanarNetwork& net, const std::vector<s
   return guides;
 }
 
-std::optional<std::vector<Guide>> sorted_guides(std::vector<Guide> guides) {
-  std::sort(guides.begin(), guides.end(), [](const Guide& a, const Guide& b) { return a.node < b.node; });
-  for (std::size_t i = 1; i < guides.size(); ++i)
-    if (guides[i].node == guides[i - 1].node) return std::nullopt;
-  return guides;
+std::vector<Guide> sorted_guides(std::vector<Guide> guides) {
+  std::stable_sort(guides.begin(), guides.end(), [](const Guide& a, const Guide& b) { return a.node < b.node; });
+  std::vector<Guide> out;
+  for (const auto& g : guides) {
+    if (!out.empty() && out.back().node == g.node) out.back() = g;  // the later one wins
+    else out.push_back(g);
+  }
+  return out;
 }
 
 std::vector<std::uint32_t> guide_nodes(const std::vector<Guide>& sorted) {
   std::vector<std::uint32_t> out;
   out.reserve(sorted.size());
   for (const auto& g : sorted) out.push_back(g.node);
+  return out;
+}
+
+std::vector<XY> map_points(const Prepared& p, const std::vector<XY>& deformed_points,
+                           const std::vector<XY>& deformed_nodes, const std::vector<XY>& rest_nodes,
+                           const NodeIndex& index, const std::vector<XY>& queries) {
+  std::vector<XY> out;
+  out.reserve(queries.size());
+  for (const auto& q : queries) {
+    if (p.grid) {
+      out.push_back(grid::place(*p.grid, deformed_points, grid::embed(*p.grid, q)));
+    } else {
+      auto n = index.nearest(q);
+      out.push_back({q.x + deformed_nodes[n].x - rest_nodes[n].x, q.y + deformed_nodes[n].y - rest_nodes[n].y});
+    }
+  }
   return out;
 }
 

@@ -12,6 +12,8 @@
 
 namespace tourmap::deform {
 
+struct Prepared;
+
 struct FocusRegion {
   std::vector<XY> polygon;  // when non-empty: the region; else a circle
   XY center;
@@ -43,8 +45,15 @@ std::vector<XY> simplify_polyline(const std::vector<XY>& line, double tolerance)
 std::vector<Guide> route_to_sketch(const PlanarNetwork& net, const std::vector<std::uint32_t>& route,
                                    const std::vector<XY>& sketch);
 
-// Guides sorted by node, as the prepared system expects; nullopt when a node appears twice.
-std::optional<std::vector<Guide>> sorted_guides(std::vector<Guide> guides);
+// Guides sorted by node, as the prepared system expects; when several pull the same node the
+// last one wins (clients cannot know where a drawn point snaps).
+std::vector<Guide> sorted_guides(std::vector<Guide> guides);
 std::vector<std::uint32_t> guide_nodes(const std::vector<Guide>& sorted);
+
+// Where points of the original map land after a deformation: through the grid (embedded in
+// their quad) or, for the edge-level method, moved like their nearest road node.
+std::vector<XY> map_points(const Prepared& p, const std::vector<XY>& deformed_points,
+                           const std::vector<XY>& deformed_nodes, const std::vector<XY>& rest_nodes,
+                           const NodeIndex& index, const std::vector<XY>& queries);
 
 }  // namespace tourmap::deform

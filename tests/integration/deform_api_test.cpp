@@ -76,13 +76,18 @@ TEST_F(DeformApi, FocusMovesRoadsAndReportsStats) {
 
 TEST_F(DeformApi, DraggingReusesTheFactorization) {
   auto first = ok("focus", focus_body(-122.305, 37.810));
-  auto second = ok("focus", focus_body(-122.300, 37.812));
+  auto moved_body = focus_body(-122.300, 37.812);
+  moved_body["map_points"] = {{-122.300, 37.812}, {-122.400, 37.9}};
+  auto second = ok("focus", moved_body);
+  ASSERT_EQ(second["mapped_points"].size(), 2u);  // the focus centre, and a point outside the map
+  EXPECT_NEAR(second["mapped_points"][0][0].get<double>(), -122.300, 0.01);
+  EXPECT_GT(second["version"].get<int>(), 0);
   EXPECT_EQ(second["stats"]["cache"], "hit");
   EXPECT_EQ(second["stats"]["factor_ms"], 0.0);
   EXPECT_NE(first["positions"], second["positions"]);
   EXPECT_EQ(second["positions"].size(), 2 * (*topology)["node_ids"].size());
   // The identical request again comes from the result cache.
-  auto repeat = post("focus", focus_body(-122.300, 37.812));
+  auto repeat = post("focus", moved_body);
   EXPECT_EQ(repeat.header("x-result-cache"), "hit");
   EXPECT_EQ(nlohmann::json::parse(repeat.body)["positions"], second["positions"]);
 }

@@ -43,10 +43,10 @@ TEST(Destination, RouteVerticesGoToTheSameArcLengthFraction) {
 }
 
 TEST(Guides, SortedUniqueAndNearestNode) {
-  EXPECT_FALSE(sorted_guides({{3, {}}, {1, {}}, {3, {}}}));
-  auto sorted = sorted_guides({{3, {}}, {1, {}}});
-  ASSERT_TRUE(sorted);
-  EXPECT_EQ(guide_nodes(*sorted), (std::vector<std::uint32_t>{1, 3}));
+  auto last_wins = sorted_guides({{3, {1, 1}}, {1, {}}, {3, {2, 2}}});
+  ASSERT_EQ(last_wins.size(), 2u);
+  EXPECT_EQ(last_wins[1].target.x, 2);
+  EXPECT_EQ(guide_nodes(sorted_guides({{3, {}}, {1, {}}})), (std::vector<std::uint32_t>{1, 3}));
   NodeIndex index({{0, 0}, {5, 5}, {10, 0}});
   EXPECT_EQ(index.nearest({6, 4}), 1u);
   EXPECT_EQ(index.nearest({9, -3}), 2u);
