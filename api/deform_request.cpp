@@ -122,8 +122,10 @@ FocusRegionInput parse_region(const nlohmann::json& v, const std::string& field,
   const auto& s = v["scale"];
   if (!s.is_number()) throw bad(field + ".scale", "expected a number");
   r.scale = s.get<double>();
-  if (!std::isfinite(r.scale) || r.scale <= 0 || r.scale > limits.max_scale)
-    throw bad(field + ".scale", "must be greater than 0 and at most " + nlohmann::json(limits.max_scale).dump());
+  // Z shrinks (Z < 1) or enlarges (Z > 1) a region; beyond 1/50..50 the map cannot give way.
+  if (!std::isfinite(r.scale) || r.scale < 1.0 / limits.max_scale || r.scale > limits.max_scale)
+    throw bad(field + ".scale", "must be between " + nlohmann::json(1.0 / limits.max_scale).dump() + " and " +
+                                    nlohmann::json(limits.max_scale).dump());
   bool has_circle = member(v, "center") || member(v, "radius_m");
   bool has_polygon = member(v, "polygon") != nullptr;
   if (has_circle == has_polygon) throw bad(field, "give either center and radius_m, or polygon");

@@ -83,7 +83,7 @@ std::shared_ptr<const DeformNetwork> DeformService::network_for(const DeformRequ
     networks_.put(key, net);
     return net;
   }
-  require_slug(r.roads_id, "road network");
+  require_slug(r.roads_id, "road network", "roads");
   auto entry = catalog_.road_network(r.roads_id);
   if (!entry) throw ApiError(404, "not_found", "no road network '" + r.roads_id + "'", "roads");
   auto key = entry->info.id + "@" + std::to_string(entry->info.version);

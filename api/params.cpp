@@ -83,10 +83,10 @@ bool query_bool(const Request& req, const std::string& name, bool fallback) {
   throw bad(name, name + ": expected true or false");
 }
 
-void require_slug(const std::string& id, const std::string& what) {
+void require_slug(const std::string& id, const std::string& what, const std::string& field) {
   bool ok = !id.empty() && id.size() <= 64;
   for (char c : id) ok = ok && ((c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '-' || c == '_');
-  if (!ok) throw ApiError(404, "not_found", "no " + what + " '" + id + "'", "id");
+  if (!ok) throw ApiError(404, "not_found", "no " + what + " '" + id + "'", field);
 }
 
 nlohmann::json parse_json_body(const Request& req) {

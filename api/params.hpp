@@ -21,7 +21,7 @@ long long query_int(const Request& req, const std::string& name, long long min, 
 bool query_bool(const Request& req, const std::string& name, bool fallback);
 
 // A path id: a url-safe slug, else 404 (no such resource can exist).
-void require_slug(const std::string& id, const std::string& what);
+void require_slug(const std::string& id, const std::string& what, const std::string& field = "id");
 
 // Parses a JSON request body: 415 unless the content type is JSON, 400 on syntax errors.
 nlohmann::json parse_json_body(const Request& req);

@@ -164,10 +164,13 @@ TEST_F(DeformApi, BadInputNamesTheField) {
   expect_error(post("focus", {{"roads", "atlantis"}, {"regions", {{{"center", c}, {"radius_m", 100}, {"scale", 2}}}}}),
                404, "roads");
   expect_error(post("focus", {{"roads", 5}, {"regions", nlohmann::json::array()}}), 400, "roads");
+  expect_error(post("focus", {{"roads", "../etc"}, {"regions", {{{"center", c}, {"radius_m", 100}, {"scale", 2}}}}}), 404,
+               "roads");
   expect_error(post("focus", focus(nlohmann::json::array())), 400, "regions");
   expect_error(post("focus", focus({{{"center", c}, {"radius_m", 100}, {"scale", 0}}})), 400, "regions[0].scale");
   expect_error(post("focus", focus({{{"center", c}, {"radius_m", 100}, {"scale", -2}}})), 400, "regions[0].scale");
   expect_error(post("focus", focus({{{"center", c}, {"radius_m", 100}, {"scale", 51}}})), 400, "regions[0].scale");
+  expect_error(post("focus", focus({{{"center", c}, {"radius_m", 100}, {"scale", 1e-300}}})), 400, "regions[0].scale");
   expect_error(post("focus", focus({{{"center", c}, {"radius_m", 100}, {"scale", "3"}}})), 400, "regions[0].scale");
   expect_error(post("focus", focus({{{"center", c}, {"scale", 3}}})), 400, "regions[0].radius_m");
   expect_error(post("focus", focus({{{"center", {200, 0}}, {"radius_m", 10}, {"scale", 3}}})), 400, "regions[0].center");
