@@ -1,0 +1,25 @@
+#pragma once
+// The quality report returned with every layout (and printed by the benchmark).
+
+#include "metro/layout_graph.hpp"
+
+namespace tourmap::metro {
+
+struct LayoutQuality {
+  double octilinear_share = 0;       // edges whose every segment is at a multiple of 45 degrees
+  std::size_t bends = 0;             // direction changes inside edges and along lines at stations
+  std::size_t crossings = 0;         // pairs of edges that cross in the layout
+  std::size_t geo_crossings = 0;     // pairs of edges that cross geographically (straight lines)
+  std::size_t order_violations = 0;  // stations whose circular order of edges changed
+  double min_edge = 0, mean_edge = 0;  // path lengths, layout units
+  double mean_displacement = 0;      // mean station offset from the Helmert-aligned geography,
+                                     // in mean edge lengths
+};
+
+LayoutQuality measure_layout(const LayoutGraph& g, const Layout& layout);
+
+// Pairs of polylines (one per edge) that intersect anywhere but at a shared end node.
+std::size_t count_path_crossings(const std::vector<std::vector<XY>>& paths,
+                                 const std::vector<std::pair<std::uint32_t, std::uint32_t>>& edges);
+
+}  // namespace tourmap::metro
