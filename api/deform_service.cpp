@@ -103,68 +103,45 @@ std::shared_ptr<deform::Prepared> DeformService::prepared_for(const DeformReques
   if (auto hit = prepared_.get(key)) return *hit;
 
   // One build per key at a time: concurrent identical requests wait for it.
-  std::shared_future<std::shared_ptr<deform::Prepared>> pending;
-  std::promise<std::shared_ptr<deform::Prepared>> promise;
-  bool builder = false;
-  {
-    std::lock_guard lock(building_mutex_);
-    auto it = building_.find(key);
-    if (it != building_.end()) {
-      pending = it->second;
-    } else {
-      pending = promise.get_future().share();
-      building_.emplace(key, pending);
-      builder = true;
-    }
+  bool built = false;
+  auto p = building_.run(key, [&] { return build_prepared(r, net, guide_nodes); }, &built);
+  if (built) prepared_.put(key, p);
+  *cache_hit = !built;
+  return p;
+}
+
+std::shared_ptr<deform::Prepared> DeformService::build_prepared(const DeformRequest& r, const DeformNetwork& net,
+                                                                const std::vector<std::uint32_t>& guide_nodes) const {
+  const auto& planar = net.planar;
+  if (r.grid.kind == GridChoice::Kind::edges) {
+    if (2 * planar.nodes.size() > limits_.max_unknowns)
+      throw ApiError(413, "too_large", "grid: the edge-level method would need more than " +
+                                           std::to_string(limits_.max_unknowns) + " unknowns", "grid");
+    return std::make_shared<deform::Prepared>(deform::prepare_edges(planar, guide_nodes, r.weights));
   }
-  if (!builder) return pending.get();
-  *cache_hit = false;
-  try {
-    std::shared_ptr<deform::Prepared> p;
-    const auto& planar = net.planar;
-    if (r.grid.kind == GridChoice::Kind::edges) {
-      if (2 * planar.nodes.size() > limits_.max_unknowns)
-        throw ApiError(413, "too_large", "grid: the edge-level method would need more than " +
-                                             std::to_string(limits_.max_unknowns) + " unknowns", "grid");
-      p = std::make_shared<deform::Prepared>(deform::prepare_edges(planar, guide_nodes, r.weights));
-    } else {
-      grid::Grid g;
-      if (r.grid.kind == GridChoice::Kind::uniform) {
-        g = grid::build_uniform(grid::frame_around(planar.nodes, r.grid.n));
-      } else {
-        std::vector<geo::XY> special;
-        for (auto n : guide_nodes) special.push_back(planar.nodes[n]);
-        auto frame = grid::frame_around(planar.nodes, r.grid.base);
-        if (grid::lattice_cells(frame, r.grid.depth) > limits_.max_lattice_cells)
-          throw ApiError(413, "too_large",
-                         "grid: base " + std::to_string(r.grid.base) + " at depth " + std::to_string(r.grid.depth) +
-                             " is finer than " + std::to_string(limits_.max_lattice_cells) +
-                             " finest cells; lower base or depth",
-                         "grid");
-        g = grid::build_adaptive(frame, planar.nodes, special, {r.grid.base, r.grid.depth, r.grid.c});
-      }
-      std::size_t limit = r.solver == deform::SolverKind::cholesky ? limits_.max_direct_grid_unknowns : limits_.max_unknowns;
-      if (2 * g.vertices.size() > limit)
-        throw ApiError(413, "too_large",
-                       "grid: " + std::to_string(g.vertices.size()) + " grid vertices exceed the limit of " +
-                           std::to_string(limit / 2) + " for the " +
-                           (r.solver == deform::SolverKind::cholesky ? "Cholesky solver; use \"solver\": \"cg\" or" : "solvers; use") +
-                           " a coarser grid",
-                       "grid");
-      p = std::make_shared<deform::Prepared>(
-          deform::prepare_grid(planar, std::move(g), guide_nodes, r.weights, r.boundary));
-    }
-    prepared_.put(key, p);
-    promise.set_value(p);
-    std::lock_guard lock(building_mutex_);
-    building_.erase(key);
-    return p;
-  } catch (...) {
-    promise.set_exception(std::current_exception());
-    std::lock_guard lock(building_mutex_);
-    building_.erase(key);
-    throw;
+  grid::Grid g;
+  if (r.grid.kind == GridChoice::Kind::uniform) {
+    g = grid::build_uniform(grid::frame_around(planar.nodes, r.grid.n));
+  } else {
+    std::vector<geo::XY> special;
+    for (auto n : guide_nodes) special.push_back(planar.nodes[n]);
+    auto frame = grid::frame_around(planar.nodes, r.grid.base);
+    if (grid::lattice_cells(frame, r.grid.depth) > limits_.max_lattice_cells)
+      throw ApiError(413, "too_large",
+                     "grid: base " + std::to_string(r.grid.base) + " at depth " + std::to_string(r.grid.depth) +
+                         " is finer than " + std::to_string(limits_.max_lattice_cells) + " finest cells; lower base or depth",
+                     "grid");
+    g = grid::build_adaptive(frame, planar.nodes, special, {r.grid.base, r.grid.depth, r.grid.c});
   }
+  std::size_t limit = r.solver == deform::SolverKind::cholesky ? limits_.max_direct_grid_unknowns : limits_.max_unknowns;
+  if (2 * g.vertices.size() > limit)
+    throw ApiError(413, "too_large",
+                   "grid: " + std::to_string(g.vertices.size()) + " grid vertices exceed the limit of " +
+                       std::to_string(limit / 2) + " for the " +
+                       (r.solver == deform::SolverKind::cholesky ? "Cholesky solver; use \"solver\": \"cg\" or" : "solvers; use") +
+                       " a coarser grid",
+                   "grid");
+  return std::make_shared<deform::Prepared>(deform::prepare_grid(planar, std::move(g), guide_nodes, r.weights, r.boundary));
 }
 
 namespace {

@@ -11,6 +11,7 @@
 #include "catalog.hpp"
 #include "deform_request.hpp"
 #include "lru_cache.hpp"
+#include "single_flight.hpp"
 
 #include "deform/applications.hpp"
 #include "deform/deformer.hpp"
@@ -56,14 +57,15 @@ class DeformService {
   std::shared_ptr<const DeformNetwork> network_for(const DeformRequest& r);
   std::shared_ptr<deform::Prepared> prepared_for(const DeformRequest& r, const DeformNetwork& net,
                                                  const std::vector<std::uint32_t>& guide_nodes, bool* cache_hit);
+  std::shared_ptr<deform::Prepared> build_prepared(const DeformRequest& r, const DeformNetwork& net,
+                                                   const std::vector<std::uint32_t>& guide_nodes) const;
 
   Catalog& catalog_;
   DeformLimits limits_;
   LruCache<std::shared_ptr<const DeformNetwork>> networks_{8};
   LruCache<std::shared_ptr<deform::Prepared>> prepared_{16};
   LruCache<std::shared_ptr<const std::string>> results_{64u << 20};
-  std::mutex building_mutex_;
-  std::map<std::string, std::shared_future<std::shared_ptr<deform::Prepared>>> building_;
+  SingleFlight<std::shared_ptr<deform::Prepared>> building_;
 };
 
 }  // namespace tourmap::api

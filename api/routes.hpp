@@ -4,6 +4,7 @@
 
 #include "catalog.hpp"
 #include "deform_service.hpp"
+#include "metro_service.hpp"
 #include "router.hpp"
 
 #include <chrono>
@@ -15,6 +16,7 @@ struct AppContext {
   store::DbPool& db;
   Catalog& catalog;
   DeformService& deform;
+  MetroService& metro;
   std::string version;  // tourmap build version
   std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
 };
@@ -27,12 +29,14 @@ void add_system_routes(Router& router, AppContext& ctx);
 void add_city_routes(Router& router, AppContext& ctx);
 void add_road_routes(Router& router, AppContext& ctx);
 void add_deform_routes(Router& router, AppContext& ctx);
+void add_metro_routes(Router& router, AppContext& ctx);
 
 inline void add_api_routes(Router& router, AppContext& ctx) {
   add_system_routes(router, ctx);
   add_city_routes(router, ctx);
   add_road_routes(router, ctx);
   add_deform_routes(router, ctx);
+  add_metro_routes(router, ctx);
 }
 
 }  // namespace tourmap::api

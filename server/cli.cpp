@@ -4,6 +4,7 @@
 #include "routes_table.hpp"
 #include "server.hpp"
 
+#include "api/mip_runner.hpp"
 #include "load/file.hpp"
 #include "load/load_error.hpp"
 #include "store/importer.hpp"
@@ -235,6 +236,8 @@ int run_cli(int argc, char** argv) {
     if (cmd == "migrate") return cmd_migrate(rest);
     if (cmd == "import") return cmd_import(rest);
     if (cmd == "routes") return cmd_routes();
+    if (cmd == "solve-mip" && rest.size() == 2)  // internal: the layout service's MIP child process
+      return api::solve_mip_from_stdin(std::stod(rest[0]), std::stod(rest[1]));
   } catch (const po::error& e) {
     std::fprintf(stderr, "tourmap %s: %s\n", cmd.c_str(), e.what());
     return 2;

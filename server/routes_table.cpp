@@ -31,7 +31,8 @@ std::vector<std::pair<std::string, std::string>> registered_routes() {
   store::DbPool db(":memory:");
   api::Catalog catalog(db);
   api::DeformService deform(catalog);
-  api::AppContext ctx{db, catalog, deform, "routes"};
+  api::MetroService metro(catalog);
+  api::AppContext ctx{db, catalog, deform, metro, "routes"};
   boost::asio::io_context ioc;
   EventHub events(ioc, db, std::chrono::milliseconds(1000));
   register_routes(state, ctx, events);

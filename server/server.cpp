@@ -60,7 +60,8 @@ int serve(const Config& config, const std::function<void(unsigned short)>& on_li
   api::Catalog catalog(db);
   ServerState state(config);  // declared before the io_context: sessions refer to it until the end
   api::DeformService deform(catalog);
-  api::AppContext ctx{db, catalog, deform, TOURMAP_VERSION};
+  api::MetroService metro(catalog, api::child_process_mip_solver("/proc/self/exe"));
+  api::AppContext ctx{db, catalog, deform, metro, TOURMAP_VERSION};
   net::io_context ioc(static_cast<int>(config.io_threads));
   EventHub events(ioc, db, std::chrono::milliseconds(2000));
   register_routes(state, ctx, events);

@@ -14,7 +14,7 @@ std::vector<double> visual_worth_lengths(const LayoutGraph& g, const std::vector
   out.reserve(g.edges.size());
   for (auto [u, v] : g.edges) {
     double f = mean > 0 ? (node_worth[u] + node_worth[v]) / (2 * mean) : 1.0;  // eq. 5.4
-    out.push_back(l_const * std::clamp(f, 0.25, 4.0));
+    out.push_back(l_const * std::clamp(f, 0.5, 2.5));
   }
   return out;
 }

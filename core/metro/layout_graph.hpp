@@ -30,7 +30,7 @@ struct Layout {
 
 // Minimum edge lengths from visual worth (eq. 5.4): l_uv = l_const * (vw(u) + vw(v)) / 2, with vw
 // normalised to mean 1 over the nodes (so the average edge keeps l_const) and clamped to
-// [0.25, 4] * l_const so that no edge vanishes or dwarfs the map.
+// [0.5, 2.5] * l_const so that no edge vanishes (crowding the octilinear grid) or dwarfs the map.
 std::vector<double> visual_worth_lengths(const LayoutGraph& g, const std::vector<double>& node_worth, double l_const);
 
 // Nodes at the same position are moved apart by `gap` metres around their centre (a layout

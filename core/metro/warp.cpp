@@ -61,13 +61,17 @@ Warp::Warp(const std::vector<XY>& from, const std::vector<XY>& to) : helmert_(fi
     if (std::isfinite(best)) spacing += best / m;
   }
   c_ = spacing > 0 ? spacing : 1.0;
-  Eigen::MatrixXd phi(m, m);
-  for (std::size_t i = 0; i < m; ++i)
+  // [Phi 1; 1^T 0] [alpha; c0] = [r; 0]: the constant term and sum(alpha) = 0 keep the
+  // interpolant bounded far from the control points (POIs outside the network stay sane).
+  Eigen::MatrixXd phi = Eigen::MatrixXd::Zero(m + 1, m + 1);
+  for (std::size_t i = 0; i < m; ++i) {
     for (std::size_t j = 0; j < m; ++j) {
       double dx = centers_[i].x - centers_[j].x, dy = centers_[i].y - centers_[j].y;
       phi(i, j) = std::sqrt(dx * dx + dy * dy + c_ * c_);
     }
-  Eigen::VectorXd rx(m), ry(m);
+    phi(i, m) = phi(m, i) = 1.0;
+  }
+  Eigen::VectorXd rx = Eigen::VectorXd::Zero(m + 1), ry = Eigen::VectorXd::Zero(m + 1);
   for (std::size_t i = 0; i < m; ++i) {
     rx[i] = residual[i].x;
     ry[i] = residual[i].y;
@@ -76,11 +80,12 @@ Warp::Warp(const std::vector<XY>& from, const std::vector<XY>& to) : helmert_(fi
   Eigen::VectorXd ax = lu.solve(rx), by = lu.solve(ry);
   alpha_.assign(ax.data(), ax.data() + m);
   beta_.assign(by.data(), by.data() + m);
+  offset_ = {ax[static_cast<Eigen::Index>(m)], by[static_cast<Eigen::Index>(m)]};
 }
 
 XY Warp::operator()(XY p) const {
   XY h = helmert_.apply(p);
-  double dx = 0, dy = 0;
+  double dx = offset_.x, dy = offset_.y;
   for (std::size_t j = 0; j < centers_.size(); ++j) {
     double ex = h.x - centers_[j].x, ey = h.y - centers_[j].y;
     double phi = std::sqrt(ex * ex + ey * ey + c_ * c_);  // eq. 5.5 / 5.6 (multiquadric basis)

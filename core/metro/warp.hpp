@@ -7,7 +7,8 @@
 //      radial basis functions (eq. 5.5, 5.6).
 // As printed, eq. 5.5/5.6 are implicit in the transformed point and singular at the control
 // points (exponent -1/2, no shape parameter); we use Hardy's multiquadric sqrt(d^2 + c^2) in the
-// Helmert-transformed plane, which interpolates the control points exactly and is explicit.
+// Helmert-transformed plane, which interpolates the control points exactly and is explicit,
+// with a constant term (and coefficients summing to 0) so it stays bounded far away.
 
 #include "geo/projection.hpp"
 
@@ -38,6 +39,7 @@ class Warp {
   Helmert helmert_;
   std::vector<XY> centers_;           // control points after Helmert
   std::vector<double> alpha_, beta_;  // x and y coefficients
+  XY offset_{0, 0};                   // constant term
   double c_ = 1.0;
 };
 

@@ -12,7 +12,7 @@ namespace {
 // Handlers called through the router, without a socket.
 class HandlersTest : public ::testing::Test {
  protected:
-  HandlersTest() : pool(dir.file("t.db")), catalog(pool), deform(catalog), ctx{pool, catalog, deform, "test"} {
+  HandlersTest() : pool(dir.file("t.db")), catalog(pool), deform(catalog), metro(catalog), ctx{pool, catalog, deform, metro, "test"} {
     auto db = pool.acquire();
     store::migrate(*db);
     store::import_metro(*db, {{"vienna", "Vienna", "Wiener Linien"}, store::MetroFormat::loom,
@@ -42,6 +42,7 @@ class HandlersTest : public ::testing::Test {
   store::DbPool pool;
   Catalog catalog;
   DeformService deform;
+  MetroService metro;
   AppContext ctx;
   Router router;
 };

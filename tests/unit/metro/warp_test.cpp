@@ -48,6 +48,9 @@ TEST(Warp, InterpolatesControlPointsAndIsSmoothBetween) {
   auto between = warp({50, 25});
   EXPECT_GT(between.x, 50.0);  // pulled along with the centre
   EXPECT_LT(between.x, 60.0);
+  // Far away the displacement stays bounded (no linear blow-up).
+  auto far = warp({100000, 100000});
+  EXPECT_LT(std::hypot(far.x - 100000, far.y - 100000), 50.0);
   // Duplicate control points do not break the system.
   Warp dup({{0, 0}, {0, 0}, {10, 0}}, {{0, 0}, {0, 0}, {20, 0}});
   EXPECT_NEAR(dup({10, 0}).x, 20.0, 1e-6);

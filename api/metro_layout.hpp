@@ -1,0 +1,55 @@
+#pragma once
+// A city's transit-centric tourist map (paper 5.4): visual worth -> edge lengths -> octilinear
+// layout -> POIs, outline and a mesh warped into it, with the quality report. Everything is in
+// one planar frame, metres in the city's projection: the layout is aligned to the geography by
+// a uniform scale and a translation (no rotation, which would break octilinearity), so clients
+// can animate between the two.
+
+#include "http.hpp"
+#include "metro_data.hpp"
+#include "mip_runner.hpp"
+
+#include "metro/layout_quality.hpp"
+#include "poi/cluster_tree.hpp"
+
+#include <memory>
+#include <string>
+
+namespace tourmap::api {
+
+struct LayoutRequest {
+  bool worth_lengths = true;  // lengths=visual-worth (eq. 5.4) | uniform (the paper's DF4)
+  enum class Solver { automatic, fast, mip } solver = Solver::automatic;
+  double time_limit_s = 10.0;
+  RankSource rank = RankSource::automatic;
+  metro::WorthParams worth;
+  double l_const = 10.0;
+  std::string canonical() const;  // cache key part
+};
+
+// From the query string (GET) or a JSON object (POST); ApiError 400 naming the field.
+LayoutRequest parse_layout_query(const Request& req);
+LayoutRequest parse_layout_body(const nlohmann::json& body);
+
+struct CityLayout {
+  std::string body;                   // the JSON answer
+  std::vector<geo::XY> poi_layout;    // POIs in the layout frame (metres)
+  std::vector<double> poi_worth;      // vw per POI (raw eq. 5.1)
+  std::vector<bool> poi_outside;      // far beyond the network: not warped with confidence
+  metro::LayoutQuality quality;
+  std::string status;
+};
+
+// Solvers (parameter `solver`): "fast" is the grid-graph routing alone; "mip" polishes it with
+// the octilinear MIP for the rest of the time limit; "auto" routes, then polishes networks of up
+// to `kAutoMipStations` stations for a tenth of the time limit, at most 0.5 s. The MIP result is
+// kept only when it lowers the objective without adding crossings or order violations.
+inline constexpr std::size_t kAutoMipStations = 250;
+inline constexpr std::size_t kMaxMipColumns = 40000;
+std::shared_ptr<const CityLayout> compute_city_layout(const CityMetroData& data, const LayoutRequest& req,
+                                                      const MipSolver& mip);
+
+// POI visual worth at their geographic positions with default parameters (for clusters).
+std::vector<double> poi_worth_geo(const CityMetroData& data, RankSource rank, const metro::WorthParams& params);
+
+}  // namespace tourmap::api

@@ -1,0 +1,148 @@
+// The metro map endpoints against a real server: layout, visual worth, clusters, bad input.
+
+#include "live_server.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace tourmap::test {
+namespace {
+
+class MetroApi : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() { live = new LiveServer(); }
+  static void TearDownTestSuite() {
+    delete live;
+    live = nullptr;
+  }
+  static LiveServer* live;
+};
+LiveServer* MetroApi::live = nullptr;
+
+void expect_error(const HttpResult& r, int status, const std::string& field) {
+  EXPECT_EQ(r.status, status) << r.body;
+  if (r.status >= 400) {
+    EXPECT_EQ(error_of(r)["field"], field) << r.body;
+  }
+}
+
+bool octilinear(const nlohmann::json& a, const nlohmann::json& b) {
+  double q = std::atan2(b[1].get<double>() - a[1].get<double>(), b[0].get<double>() - a[0].get<double>()) / (M_PI / 4);
+  return std::abs(q - std::round(q)) < 1e-3;  // coordinates are rounded to 0.1 m
+}
+
+TEST_F(MetroApi, LayoutIsOctilinearWithWarpedPoisAndAReport) {
+  auto r = live->get("/api/v1/cities/vienna/layout?lengths=visual-worth&solver=auto");
+  ASSERT_EQ(r.status, 200) << r.body;
+  auto l = nlohmann::json::parse(r.body);
+  EXPECT_EQ(l["stations"]["features"].size(), 98u);
+  EXPECT_EQ(l["edges"]["features"].size(), 105u);
+  EXPECT_EQ(l["pois"]["features"].size(), 63u);
+  for (const auto& e : l["edges"]["features"]) {
+    const auto& c = e["geometry"]["coordinates"];
+    for (std::size_t i = 1; i < c.size(); ++i) EXPECT_TRUE(octilinear(c[i - 1], c[i])) << e["properties"];
+  }
+  const auto& q = l["quality"];
+  EXPECT_EQ(q["octilinear_share"], 1.0);
+  EXPECT_LE(q["crossings"].get<int>(), q["geo_crossings"].get<int>());
+  EXPECT_EQ(q["order_violations"], 0);
+  EXPECT_GT(q["min_edge"].get<double>(), 0.0);
+  EXPECT_TRUE(l["solver"]["kind"] == "fast" || l["solver"]["kind"] == "mip");
+  EXPECT_EQ(l["mesh"]["geo"].size(), l["mesh"]["layout"].size());
+  EXPECT_GT(l["outline"]["layout"].size(), 2u);
+  EXPECT_TRUE(l["timing_ms"].contains("visual_worth"));
+  EXPECT_EQ(l["params"]["rank"], "proxy");  // Vienna's sights carry no rank
+  // Uniform lengths give a different layout; the same request again comes from the cache.
+  auto uniform = live->get("/api/v1/cities/vienna/layout?lengths=uniform&solver=fast");
+  ASSERT_EQ(uniform.status, 200);
+  EXPECT_NE(nlohmann::json::parse(uniform.body)["edges"], l["edges"]);
+  auto again = live->get("/api/v1/cities/vienna/layout?lengths=uniform&solver=fast");
+  EXPECT_EQ(again.header("x-result-cache"), "hit");
+  EXPECT_EQ(again.body, uniform.body);
+}
+
+TEST_F(MetroApi, PostLayoutAndMip) {
+  auto r = http_request(live->port(), "POST", "/api/v1/cities/lisbon/layout", {{"Content-Type", "application/json"}},
+                        R"({"solver":"mip","lengths":"uniform","time_limit_s":3})");
+  ASSERT_EQ(r.status, 200) << r.body;
+  auto l = nlohmann::json::parse(r.body);
+  EXPECT_TRUE(l["solver"].contains("mip")) << l["solver"];
+  EXPECT_FALSE(l["solver"]["mip"]["status"].get<std::string>().empty());
+  EXPECT_EQ(l["quality"]["octilinear_share"], 1.0);
+  EXPECT_LE(l["timing_ms"]["total"].get<double>(), 3000.0 + 1500.0);  // the time limit, plus the child's grace
+}
+
+TEST_F(MetroApi, VisualWorthRaster) {
+  auto v = live->get_json("/api/v1/cities/vienna/visual-worth?width=32&height=16");
+  EXPECT_EQ(v["values"].size(), 32u * 16u);
+  double max = 0;
+  for (const auto& x : v["values"]) max = std::max(max, x.get<double>());
+  EXPECT_EQ(max, 1.0);  // normalised
+  EXPECT_EQ(v["stations"].size(), 98u);
+  EXPECT_EQ(v["pois"], 63);
+  auto none = live->get_json("/api/v1/cities/lisbon/visual-worth?width=4&height=4");  // no POIs
+  EXPECT_EQ(none["max"], 0.0);
+}
+
+TEST_F(MetroApi, ClustersRespectTheWindowAndChangeWithIt) {
+  auto all = live->get_json("/api/v1/cities/vienna/clusters?m=5");
+  EXPECT_EQ(all["space"], "geo");
+  EXPECT_LE(all["clusters"].size(), 5u);
+  EXPECT_GT(all["clusters"].size(), 0u);
+  double sum = 0;
+  for (const auto& c : all["clusters"]) {
+    sum += c["prominence"].get<double>();
+    EXPECT_FALSE(c["representative"]["name"].get<std::string>().empty());
+  }
+  EXPECT_LE(sum, 1.0 + 1e-9);
+  // A small window in the inner city: every cluster centre lies inside it.
+  auto inner = live->get_json("/api/v1/cities/vienna/clusters?bbox=16.355,48.200,16.385,48.215&m=10");
+  for (const auto& c : inner["clusters"]) {
+    double lon = c["center"][0], lat = c["center"][1];
+    EXPECT_TRUE(lon >= 16.355 && lon <= 16.385 && lat >= 48.200 && lat <= 48.215) << c;
+  }
+  EXPECT_NE(inner["clusters"], all["clusters"]);
+  // Layout space: the window is in the layout's frame.
+  auto layout = live->get_json("/api/v1/cities/vienna/layout");
+  double x0 = 1e18, y0 = 1e18, x1 = -1e18, y1 = -1e18;
+  for (const auto& p : layout["pois"]["features"]) {
+    double x = p["geometry"]["coordinates"][0], y = p["geometry"]["coordinates"][1];
+    x0 = std::min(x0, x);
+    y0 = std::min(y0, y);
+    x1 = std::max(x1, x);
+    y1 = std::max(y1, y);
+  }
+  auto in_layout = live->get_json("/api/v1/cities/vienna/clusters?space=layout&bbox=" + std::to_string(x0 - 1) + "," +
+                                  std::to_string(y0 - 1) + "," + std::to_string(x1 + 1) + "," + std::to_string(y1 + 1));
+  EXPECT_EQ(in_layout["space"], "layout");
+  EXPECT_GT(in_layout["clusters"].size(), 0u);
+}
+
+TEST_F(MetroApi, BadInputNamesTheField) {
+  expect_error(live->get("/api/v1/cities/atlantis/layout"), 404, "id");
+  expect_error(live->get("/api/v1/cities/vienna/layout?lengths=long"), 400, "lengths");
+  expect_error(live->get("/api/v1/cities/vienna/layout?solver=gurobi"), 400, "solver");
+  expect_error(live->get("/api/v1/cities/vienna/layout?time_limit_s=0"), 400, "time_limit_s");
+  expect_error(live->get("/api/v1/cities/vienna/layout?time_limit_s=nan"), 400, "time_limit_s");
+  expect_error(live->get("/api/v1/cities/vienna/layout?rank=data"), 400, "rank");  // no ranks in the data
+  expect_error(live->get("/api/v1/cities/vienna/layout?k=-5"), 400, "k");
+  expect_error(http_request(live->port(), "POST", "/api/v1/cities/vienna/layout", {{"Content-Type", "application/json"}},
+                            R"({"lengths": 5})"),
+               400, "lengths");
+  expect_error(http_request(live->port(), "POST", "/api/v1/cities/vienna/layout", {{"Content-Type", "application/json"}},
+                            R"({"colour": "red"})"),
+               400, "colour");
+  expect_error(live->get("/api/v1/cities/vienna/clusters?m=0"), 400, "m");
+  expect_error(live->get("/api/v1/cities/vienna/clusters?m=100000"), 400, "m");
+  expect_error(live->get("/api/v1/cities/vienna/clusters?bbox=16.4,48.2,16.3,48.3"), 400, "bbox");
+  expect_error(live->get("/api/v1/cities/vienna/clusters?bbox=nan,48.2,16.3,48.3"), 400, "bbox");
+  expect_error(live->get("/api/v1/cities/vienna/clusters?space=tokyo"), 400, "space");
+  expect_error(live->get("/api/v1/cities/vienna/clusters?space=layout"), 400, "bbox");
+  expect_error(live->get("/api/v1/cities/vienna/clusters?space=layout&bbox=5,5,1,1"), 400, "bbox");
+  expect_error(live->get("/api/v1/cities/vienna/visual-worth?width=100000"), 400, "width");
+  expect_error(live->get("/api/v1/cities/vienna/visual-worth?height=0"), 400, "height");
+}
+
+}  // namespace
+}  // namespace tourmap::test
