@@ -36,6 +36,11 @@ const CHROMIUM_ARGS = [
 
 export const STEP_TIMEOUT_MS = 20_000;
 
+/** What requests to other hosts get (see openPage). */
+const STAND_IN_PHOTO =
+  '<svg xmlns="http://www.w3.org/2000/svg" width="40" height="40"><rect width="40" height="40" fill="#9ab"/></svg>';
+const LOCAL_HOSTS = new Set(['127.0.0.1', 'localhost', '[::1]']);
+
 export class TestFailure extends Error {}
 
 export function check(condition, message) {
@@ -95,7 +100,12 @@ export async function apiJson(baseUrl, path) {
   return response.json();
 }
 
-/** Headless Chromium with one page; console errors and uncaught exceptions go to state.consoleErrors. */
+/**
+ * Headless Chromium with one page; console errors and uncaught exceptions go to state.consoleErrors.
+ * Requests to other hosts than the test server (POI photos on the data publishers' sites) are
+ * answered with a small local picture: the tests must not depend on the internet, and a photo
+ * that cannot be loaded would log a console error.
+ */
 export async function openPage(state) {
   state.context = await chromium.launchPersistentContext(join(state.tmp, 'profile'), {
     executablePath: '/usr/bin/chromium',
@@ -105,6 +115,10 @@ export async function openPage(state) {
   });
   const page = state.context.pages()[0] ?? (await state.context.newPage());
   page.setDefaultTimeout(STEP_TIMEOUT_MS);
+  await page.route(
+    (url) => !LOCAL_HOSTS.has(url.hostname),
+    (route) => route.fulfill({ status: 200, contentType: 'image/svg+xml', body: STAND_IN_PHOTO }),
+  );
   page.on('console', (message) => {
     if (message.type() === 'error') state.consoleErrors.push(message.text());
   });

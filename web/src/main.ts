@@ -3,6 +3,7 @@ import './styles/shell.css';
 import './styles/map.css';
 import './styles/panels.css';
 import './styles/deform.css';
+import './styles/metro.css';
 import { EventStream } from './api/events';
 import { navigate, routeHash, watchRoute, type Route, type ViewName } from './router';
 import { Shell } from './ui/shell';

@@ -1,15 +1,21 @@
 import type {
+  BBox,
   CityDetail,
   CitySummary,
+  ClusterSpace,
+  ClustersResponse,
   DeformBody,
   DeformKind,
   DeformResponse,
+  LayoutParams,
+  LayoutResponse,
   MetroCollection,
   PoiCollection,
   PoiFeature,
   RoadCollection,
   RoadNetworkSummary,
   RoadTopology,
+  VisualWorthRaster,
 } from './types';
 
 const API_ROOT = '/api/v1';
@@ -46,6 +52,11 @@ async function errorFrom(response: Response): Promise<ApiError> {
 }
 
 async function requestJson<T>(path: string, init: RequestInit): Promise<T> {
+  return (await requestWithHeaders<T>(path, init)).body;
+}
+
+/** requestJson, also handing back the answer's headers (X-Result-Cache, say). */
+async function requestWithHeaders<T>(path: string, init: RequestInit): Promise<{ body: T; headers: Headers }> {
   let response: Response;
   try {
     response = await fetch(API_ROOT + path, { ...init, headers: { Accept: 'application/json', ...init.headers } });
@@ -54,7 +65,7 @@ async function requestJson<T>(path: string, init: RequestInit): Promise<T> {
     throw new ApiError(0, 'network', 'The tourmap server cannot be reached. Check your connection and try again.');
   }
   if (!response.ok) throw await errorFrom(response);
-  return (await response.json()) as T;
+  return { body: (await response.json()) as T, headers: response.headers };
 }
 
 function getJson<T>(path: string, signal?: AbortSignal): Promise<T> {
@@ -113,4 +124,58 @@ export function postDeform(kind: DeformKind, body: DeformBody, signal?: AbortSig
     headers: { 'Content-Type': 'application/json' },
     body: JSON.stringify(body),
   });
+}
+
+/** The query string of a layout's parameters, in a fixed order (the same layout for /layout and /clusters). */
+export function layoutQuery(params: LayoutParams): string {
+  return `lengths=${segment(params.lengths)}&solver=${segment(params.solver)}`;
+}
+
+export interface LayoutAnswer {
+  layout: LayoutResponse;
+  /** X-Result-Cache: the server had the layout already (hit) or computed it (miss). */
+  cache: string;
+  /** Browser: from sending the request to having the answer parsed. */
+  fetchMs: number;
+}
+
+/** GET /cities/{id}/layout: the octilinear, transit-centric map; the first request per parameters can take seconds. */
+export async function fetchLayout(id: string, params: LayoutParams, signal?: AbortSignal): Promise<LayoutAnswer> {
+  const started = performance.now();
+  const { body, headers } = await requestWithHeaders<LayoutResponse>(`/cities/${segment(id)}/layout?${layoutQuery(params)}`, {
+    signal,
+    cache: 'no-cache',
+  });
+  return { layout: body, cache: headers.get('X-Result-Cache') ?? 'unknown', fetchMs: performance.now() - started };
+}
+
+const coordinate = (value: number) => String(Math.round(value * 1e6) / 1e6);
+
+/** GET /cities/{id}/visual-worth: a width x height raster over a lon/lat bbox. */
+export function fetchVisualWorth(id: string, bbox: BBox, width: number, height: number, signal?: AbortSignal): Promise<VisualWorthRaster> {
+  return getJson<VisualWorthRaster>(
+    `/cities/${segment(id)}/visual-worth?bbox=${bbox.map(coordinate).join(',')}&width=${width}&height=${height}`,
+    signal,
+  );
+}
+
+export interface ClusterQuery {
+  space: ClusterSpace;
+  /** geo: min_lon,min_lat,max_lon,max_lat; layout: x0,y0,x1,y1 in the layout frame */
+  bbox: [number, number, number, number];
+  m: number;
+  /** space=layout: the parameters of the layout drawn. */
+  layout?: LayoutParams;
+}
+
+/** The path (under /api/v1) of a /clusters request. */
+export function clustersPath(id: string, query: ClusterQuery): string {
+  const bbox = query.space === 'geo' ? query.bbox.map(coordinate) : query.bbox.map((value) => value.toFixed(1));
+  const layout = query.space === 'layout' && query.layout ? `&${layoutQuery(query.layout)}` : '';
+  return `/cities/${segment(id)}/clusters?space=${query.space}&bbox=${bbox.join(',')}&m=${query.m}${layout}`;
+}
+
+/** GET /cities/{id}/clusters: the active POI clusters of a window. */
+export function fetchClusters(id: string, query: ClusterQuery, signal?: AbortSignal): Promise<ClustersResponse> {
+  return getJson<ClustersResponse>(clustersPath(id, query), signal);
 }

@@ -221,3 +221,146 @@ export interface DeformResponse {
   stats: DeformStats;
   attribution: string[];
 }
+
+// ---- Transit-centric tourist map (GET /cities/{id}/layout, /visual-worth, /clusters) ----
+
+/** A point in a city's planar frame: metres in its transverse Mercator projection, x east, y north. */
+export type XY = [x: number, y: number];
+
+export type LayoutLengths = 'visual-worth' | 'uniform';
+export type LayoutSolverKind = 'auto' | 'fast' | 'mip';
+
+/** The query of GET /cities/{id}/layout that picks a layout (also passed to /clusters?space=layout). */
+export interface LayoutParams {
+  lengths: LayoutLengths;
+  solver: LayoutSolverKind;
+}
+
+export interface LayoutStationProperties {
+  id: string;
+  name: string;
+  station_id: string;
+  lines: string[];
+  /** Normalised 0..1 */
+  worth: number;
+  /** The station's geographic position in the frame. */
+  geo: XY;
+  lonlat: LonLat;
+}
+
+export interface LayoutEdgeProperties {
+  from: string;
+  to: string;
+  lines: string[];
+  /** The geographic track in the frame. */
+  geo: XY[];
+  min_length?: number;
+}
+
+export interface LayoutPoiProperties {
+  id: string;
+  name: string;
+  category: string;
+  image?: string;
+  url?: string;
+  wikipedia?: string;
+  worth: number;
+  /** Far beyond the network: its warped position means little. */
+  outside: boolean;
+  geo: XY;
+  lonlat: LonLat;
+}
+
+export interface PlanarPoint {
+  type: 'Point';
+  coordinates: XY;
+}
+
+export interface PlanarLineString {
+  type: 'LineString';
+  coordinates: XY[];
+}
+
+export interface LayoutQuality {
+  octilinear_share: number;
+  bends: number;
+  crossings: number;
+  geo_crossings: number;
+  order_violations: number;
+  min_edge: number;
+  mean_edge: number;
+  mean_displacement: number;
+}
+
+export interface LayoutSolver {
+  kind: string;
+  status: string;
+  gap: number | null;
+  mip?: { accepted?: boolean; status?: string; reason?: string; time_ms?: number; gap?: number | null };
+}
+
+export interface LayoutResponse {
+  city: string;
+  version: number;
+  frame: {
+    kind: string;
+    description?: string;
+    layout_units_per_metre?: number;
+    projection: { kind: string; lat0: number; lon0: number; k0: number };
+  };
+  stations: { type: 'FeatureCollection'; features: Feature<PlanarPoint, LayoutStationProperties>[] };
+  edges: { type: 'FeatureCollection'; features: Feature<PlanarLineString, LayoutEdgeProperties>[] };
+  pois: { type: 'FeatureCollection'; features: Feature<PlanarPoint, LayoutPoiProperties>[] };
+  /** Row-major from the south-west corner, rows going north. */
+  mesh: { cols: number; rows: number; geo: XY[]; layout: XY[] };
+  /** One ring each (the network's convex hull), not closed. */
+  outline: { geo: XY[]; layout: XY[] };
+  lines: MetroLine[];
+  quality: LayoutQuality;
+  solver: LayoutSolver;
+  timing_ms: { visual_worth?: number; layout?: number; warp?: number; total?: number };
+  params: Record<string, string | number>;
+  attribution: string[];
+}
+
+/** GET /cities/{id}/visual-worth: a raster of eq. 5.1 for a heat map. */
+export interface VisualWorthRaster {
+  bbox: BBox;
+  width: number;
+  height: number;
+  /** Row-major from the north-west corner, normalised 0..1 */
+  values: number[];
+  max: number;
+  stations: { id: string; worth: number }[];
+  took_ms?: number;
+}
+
+export interface ClusterRepresentative {
+  id: string;
+  name: string;
+  category: string;
+  image?: string;
+  url?: string;
+  /** lon/lat (space=geo) or [x, y] in the layout frame (space=layout) */
+  position: [number, number];
+}
+
+export interface PoiCluster {
+  id: string;
+  /** lon/lat (space=geo) or [x, y] in the layout frame (space=layout) */
+  center: [number, number];
+  size: number;
+  prominence: number;
+  representative: ClusterRepresentative;
+}
+
+export type ClusterSpace = 'geo' | 'layout';
+
+export interface ClustersResponse {
+  city?: string;
+  space?: ClusterSpace;
+  clusters: PoiCluster[];
+  previews: PoiCluster[];
+  active: number;
+  took_ms: number;
+}

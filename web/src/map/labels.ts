@@ -18,7 +18,8 @@ export interface Label {
   priority: number;
 }
 
-interface Box {
+/** A rectangle in screen pixels. */
+export interface Box {
   x0: number;
   y0: number;
   x1: number;
@@ -52,16 +53,17 @@ export function labelWidth(text: string): number {
 const overlaps = (a: Box, b: Box) => a.x0 < b.x1 && b.x0 < a.x1 && a.y0 < b.y1 && b.y0 < a.y1;
 
 /**
- * Shows the labels that fit without overlapping each other or a marker, greedily by priority,
- * and hides the rest. Labels off screen are hidden too.
+ * Shows the labels that fit without overlapping each other, a marker or an obstacle (screen
+ * boxes: other layers' markers), greedily by priority, and hides the rest. Labels off screen
+ * are hidden too.
  */
-export function placeLabels(map: SvgMap, labels: Label[], markers: Anchor[]): void {
+export function placeLabels(map: SvgMap, labels: Label[], markers: Anchor[], obstacles: Box[] = []): void {
   const { width, height } = map.size;
   const markerBoxes = markers.map((marker) => {
     const [x, y] = map.toScreen(marker.x, marker.y);
     return { marker, box: { x0: x - MARKER_RADIUS, y0: y - MARKER_RADIUS, x1: x + MARKER_RADIUS, y1: y + MARKER_RADIUS } };
   });
-  const taken: Box[] = [];
+  const taken: Box[] = [...obstacles];
   const free = (box: Box, own: Anchor) =>
     box.x0 >= 0 && box.y0 >= 0 && box.x1 <= width && box.y1 <= height &&
     !taken.some((other) => overlaps(box, other)) &&

@@ -7,8 +7,9 @@ import { svg } from './svg';
 /** An element drawn in screen space at a projected point, so it keeps its pixel size at any zoom. */
 export interface Anchor {
   readonly element: SVGElement;
-  readonly x: number;
-  readonly y: number;
+  /** The point in frame units; may change (a morphing map), then requestRender(). */
+  x: number;
+  y: number;
   /** Pixel offset from the point (labels move beside their station). */
   dx: number;
   dy: number;
@@ -65,6 +66,11 @@ export class SvgMap {
   private insets: () => Insets = () => NO_INSETS;
   private readonly renderListeners = new Set<() => void>();
   private gestureFilter: (event: Event) => boolean = () => true;
+  /** Part of the frame fit() shows instead of the whole frame: [x0, y0, x1, y1]. */
+  private fitBounds: [number, number, number, number] | null = null;
+  /** While set, programmatic moves (an animation's frames) do not call the settle listeners. */
+  private quiet = false;
+  private gestures = 0;
 
   /** `doubleClickZoom: false` leaves double clicks to the view (map editors use clicks). */
   constructor(label: string, options: { doubleClickZoom?: boolean } = {}) {
@@ -79,10 +85,15 @@ export class SvgMap {
     this.zoomBehavior = zoom<SVGSVGElement, unknown>()
       .on('zoom', (event: D3ZoomEvent<SVGSVGElement, unknown>) => {
         this.transform = event.transform;
-        if (event.sourceEvent) this.followsFit = false;
+        if (event.sourceEvent) {
+          this.followsFit = false;
+          this.gestures++;
+        }
         this.requestRender();
       })
-      .on('end', () => this.settleListeners.forEach((listener) => listener()))
+      .on('end', () => {
+        if (!this.quiet) this.settle();
+      })
       .filter((event: Event) => defaultFilter(event) && this.gestureFilter(event))
       // A click that wobbles a few pixels is still a click, not a pan.
       .clickDistance(4);
@@ -93,7 +104,7 @@ export class SvgMap {
     // Also fires when a hidden view is shown again.
     new ResizeObserver(() => {
       if (this.followsFit) this.fit(false);
-      else this.settleListeners.forEach((listener) => listener());
+      else this.settle();
     }).observe(this.element);
   }
 
@@ -108,6 +119,24 @@ export class SvgMap {
     // Set even when fit() cannot run yet (a hidden view): the first resize then fits.
     this.followsFit = true;
     this.fit(false);
+  }
+
+  /**
+   * What fit() shows: a part of the frame [x0, y0, x1, y1] (a morphed map's extent), or null
+   * for the whole frame. Does not move the map.
+   */
+  setFitBounds(bounds: [number, number, number, number] | null): void {
+    this.fitBounds = bounds;
+  }
+
+  /** True until the user moves the map: a resize (or a view that wants to) fits it again. */
+  get followingFit(): boolean {
+    return this.followsFit;
+  }
+
+  /** Counts the user's pans and zooms (an animation that moves the map stops when it changes). */
+  get gestureCount(): number {
+    return this.gestures;
   }
 
   /** Tells fit() which parts of the map are covered (by a legend, say); asked at every fit. */
@@ -127,6 +156,12 @@ export class SvgMap {
     this.world.replaceChildren();
     this.screen.replaceChildren();
     this.anchors = [];
+  }
+
+  /** Forgets anchors (their elements are the caller's to remove). */
+  removeAnchors(anchors: Iterable<Anchor>): void {
+    const gone = new Set(anchors);
+    if (gone.size > 0) this.anchors = this.anchors.filter((anchor) => !gone.has(anchor));
   }
 
   anchor(element: SVGElement, [x, y]: [number, number]): Anchor {
@@ -192,27 +227,67 @@ export class SvgMap {
     });
   }
 
-  fit(animate = true): void {
+  /** The pan and zoom fit() would go to, or null when the map has no size or frame yet. */
+  fitTransform(): ZoomTransform | null {
     const frame = this.frame;
     const { width, height } = this.size;
-    if (!frame || width === 0 || height === 0) return;
+    if (!frame || width === 0 || height === 0) return null;
     const pad = Math.min(FIT_PADDING_PX, width / 8, height / 8);
     let { top, right, bottom, left } = this.insets();
     // Panels that would leave the map less than half the room are ignored: better under a panel than tiny.
     if (left + right > width / 2) left = right = 0;
     if (top + bottom > height / 2) top = bottom = 0;
     const k = Math.min((width - left - right - 2 * pad) / frame.width, (height - top - bottom - 2 * pad) / frame.height);
+    // The zoom limits stay those of the whole frame; fitBounds only says what to show.
+    const [bx0, by0, bx1, by1] = this.fitBounds ?? [0, 0, frame.width, frame.height];
+    const fitK = Math.min(
+      (width - left - right - 2 * pad) / Math.max(bx1 - bx0, 1e-9),
+      (height - top - bottom - 2 * pad) / Math.max(by1 - by0, 1e-9),
+      k * MAX_ZOOM,
+    );
     this.zoomBehavior
       .scaleExtent([k * MIN_ZOOM, k * MAX_ZOOM])
       .translateExtent([
         [-frame.width, -frame.height],
         [2 * frame.width, 2 * frame.height],
       ]);
-    const target = zoomIdentity
-      .translate(left + (width - left - right - frame.width * k) / 2, top + (height - top - bottom - frame.height * k) / 2)
-      .scale(k);
+    return zoomIdentity
+      .translate(left + (width - left - right - (bx1 - bx0) * fitK) / 2 - bx0 * fitK, top + (height - top - bottom - (by1 - by0) * fitK) / 2 - by0 * fitK)
+      .scale(fitK);
+  }
+
+  fit(animate = true): void {
+    const target = this.fitTransform();
+    if (!target) return;
     this.followsFit = true;
     this.animated(animate, 350).call(this.zoomBehavior.transform, target);
+  }
+
+  /**
+   * Sets the pan and zoom at once, without telling the settle listeners: for the frames of an
+   * animation, which calls settle() when it ends. Keeps followsFit as it is.
+   */
+  jumpTo(x: number, y: number, k: number): void {
+    this.quiet = true;
+    try {
+      select(this.svg).interrupt().call(this.zoomBehavior.transform, zoomIdentity.translate(x, y).scale(k));
+    } finally {
+      this.quiet = false;
+    }
+  }
+
+  /** Calls the settle listeners (after an animation moved the map with jumpTo). */
+  settle(): void {
+    this.settleListeners.forEach((listener) => listener());
+  }
+
+  /** Zooms in by `factor` and centres the projected point. */
+  zoomTo(x: number, y: number, factor: number): void {
+    const { width, height } = this.size;
+    const [kMin, kMax] = this.zoomBehavior.scaleExtent();
+    const k = Math.max(kMin, Math.min(kMax, this.transform.k * factor));
+    this.followsFit = false;
+    this.animated(true, 450).call(this.zoomBehavior.transform, zoomIdentity.translate(width / 2 - x * k, height / 2 - y * k).scale(k));
   }
 
   zoomBy(factor: number): void {

@@ -1,10 +1,11 @@
 import type { EdgeFeature, MetroCollection, MetroLine, PoiFeature, StationFeature } from '../api/types';
-import { LABEL_FONT, labelWidth, placeLabels, type Label } from '../map/labels';
+import { LABEL_FONT, labelWidth, placeLabels, type Box, type Label } from '../map/labels';
 import type { Frame } from '../map/projection';
 import { polylinePath, svg } from '../map/svg';
 import type { Anchor, SvgMap } from '../map/svg-map';
 import { MapTooltip } from '../map/tooltip';
 import { lineColor } from './lines';
+import type { Geometry, Pt } from './morph';
 
 export type MetroPick = { kind: 'station'; station: StationFeature } | { kind: 'poi'; poi: PoiFeature };
 
@@ -29,15 +30,34 @@ interface Marked<F> {
   anchor: Anchor;
 }
 
+/** An edge drawn, with the stations it joins (how a layout's edge finds it). */
+export interface DrawnEdge {
+  element: SVGPathElement;
+  from: string;
+  to: string;
+  lines: string[];
+  color: string;
+}
+
 /**
  * A city's metro network and POIs drawn on a map: edges in the world layers, station and POI
  * markers and station labels in screen layers. Reports picks (clicks on markers, or on empty
  * map to clear) and shows names in a tooltip on hover.
+ *
+ * The drawing can move: setGeometry() puts stations, edges and POIs elsewhere (the octilinear
+ * layout, or a frame of the morph towards it). `geo` is the geographic drawing it starts with.
+ * It also makes, under the network, the layers for a heat map and the warp mesh, and above the
+ * POIs one for clusters, which other classes fill.
  */
 export class MetroLayers {
+  readonly geo: Geometry;
+  readonly heatLayer: SVGGElement;
+  readonly clusterLayer: SVGGElement;
   private readonly stations = new Map<string, Marked<StationFeature> & { label: Label }>();
   private readonly pois = new Map<string, Marked<PoiFeature>>();
-  private readonly edges: { element: SVGPathElement; lines: string[]; color: string }[] = [];
+  private readonly edges: DrawnEdge[] = [];
+  private readonly casing: SVGPathElement;
+  private readonly gridPath: SVGPathElement;
   private readonly labels: Label[] = [];
   private readonly lines: Map<string, MetroLine>;
   private readonly poiLayer: SVGGElement;
@@ -47,8 +67,11 @@ export class MetroLayers {
   private readonly stopSettle: () => void;
   private selected?: SVGElement;
   /** Median straight distance between the ends of an edge, in frame units. */
-  private readonly typicalGap: number;
+  private typicalGap: number;
   private markerScale = 0;
+  private current: Geometry;
+  private obstacles: () => Box[] = () => [];
+  private moving = false;
 
   constructor(
     private readonly map: SvgMap,
@@ -63,13 +86,28 @@ export class MetroLayers {
     const edgeFeatures = metro.features.filter((f): f is EdgeFeature => f.properties.kind === 'edge');
     const stationFeatures = metro.features.filter((f): f is StationFeature => f.properties.kind === 'station');
 
-    this.drawEdges(map.addLayer('casing', 'world'), map.addLayer('edges', 'world'), frame, edgeFeatures, lines);
-    this.typicalGap = medianGap(edgeFeatures, frame);
+    this.heatLayer = map.addLayer('heat', 'world');
+    this.gridPath = svg('path', { class: 'warp-grid' });
+    map.addLayer('grid', 'world').append(this.gridPath);
+    this.casing = svg('path', { class: 'edge-casing' });
+    map.addLayer('casing', 'world').append(this.casing);
+    this.drawEdges(map.addLayer('edges', 'world'), edgeFeatures, lines);
     this.poiLayer = map.addLayer('pois', 'screen');
     const stationLayer = map.addLayer('stations', 'screen');
+    this.clusterLayer = map.addLayer('clusters', 'screen');
     this.labelLayer = map.addLayer('labels', 'screen');
     for (const feature of pois) this.drawPoi(feature, frame);
     for (const feature of stationFeatures) this.drawStation(stationLayer, feature, frame, lines);
+
+    this.geo = {
+      stations: new Map([...this.stations].map(([id, { anchor }]) => [id, [anchor.x, anchor.y] as Pt])),
+      pois: new Map([...this.pois].map(([id, { anchor }]) => [id, [anchor.x, anchor.y] as Pt])),
+      edges: edgeFeatures.map((feature) => feature.geometry.coordinates.map((position) => frame.project(position))),
+      grid: [],
+    };
+    this.current = this.geo;
+    this.drawPaths(this.geo);
+    this.typicalGap = medianGap(this.geo.edges);
 
     this.tooltip = new MapTooltip(map.element);
     this.listen();
@@ -99,8 +137,62 @@ export class MetroLayers {
     this.settle();
   }
 
-  setPoisVisible(visible: boolean): void {
+  /** `clustered`: only the selected POI shows (the clusters stand for the rest). */
+  setPoisVisible(visible: boolean, clustered = false): void {
     this.poiLayer.style.display = visible ? '' : 'none';
+    this.poiLayer.classList.toggle('clustered', clustered);
+    this.clusterLayer.style.display = visible && clustered ? '' : 'none';
+  }
+
+  /** The edges in drawing order (the order of Geometry.edges). */
+  get drawnEdges(): readonly DrawnEdge[] {
+    return this.edges;
+  }
+
+  /** What is drawn now. */
+  get geometry(): Geometry {
+    return this.current;
+  }
+
+  /**
+   * Moves everything to `geometry`. `final`: the morph is over, so markers are sized for the new
+   * spacing and station names placed again; during a morph the names are hidden.
+   */
+  setGeometry(geometry: Geometry, final: boolean): void {
+    this.current = geometry;
+    for (const [id, { anchor, label }] of this.stations) {
+      const point = geometry.stations.get(id);
+      if (!point) continue;
+      [anchor.x, anchor.y] = point;
+      [label.anchor.x, label.anchor.y] = point;
+    }
+    for (const [id, { anchor }] of this.pois) {
+      const point = geometry.pois.get(id);
+      if (point) [anchor.x, anchor.y] = point;
+    }
+    this.drawPaths(geometry);
+    this.moving = !final;
+    this.labelLayer.classList.toggle('moving', !final);
+    this.map.requestRender();
+    if (final) {
+      this.typicalGap = medianGap(geometry.edges);
+      this.markerScale = 0;
+      this.settle();
+    }
+  }
+
+  setGridVisible(visible: boolean): void {
+    this.gridPath.style.display = visible ? '' : 'none';
+  }
+
+  /** Screen boxes (other layers' markers) that station names keep clear of; asked at every placement. */
+  setLabelObstacles(obstacles: () => Box[]): void {
+    this.obstacles = obstacles;
+  }
+
+  /** Places the station names again (after another layer's markers changed). */
+  placeLabels(): void {
+    if (!this.moving) this.settle();
   }
 
   setLabelsVisible(visible: boolean): void {
@@ -129,24 +221,26 @@ export class MetroLayers {
     this.map.clear();
   }
 
-  private drawEdges(
-    casingLayer: SVGGElement,
-    edgeLayer: SVGGElement,
-    frame: Frame,
-    features: EdgeFeature[],
-    lines: Map<string, MetroLine>,
-  ): void {
-    const paths: string[] = [];
+  private drawEdges(edgeLayer: SVGGElement, features: EdgeFeature[], lines: Map<string, MetroLine>): void {
     for (const feature of features) {
-      const d = polylinePath(feature.geometry.coordinates.map((position) => frame.project(position)));
-      paths.push(d);
       const color = lineColor(lines.get(feature.properties.lines[0] ?? ''));
-      const element = svg('path', { class: 'edge', d, stroke: color });
+      const element = svg('path', { class: 'edge', stroke: color, 'data-from': feature.properties.from, 'data-to': feature.properties.to });
       edgeLayer.append(element);
-      this.edges.push({ element, lines: feature.properties.lines, color });
+      const { from, to, lines: lineIds } = feature.properties;
+      this.edges.push({ element, from, to, lines: lineIds, color });
     }
+  }
+
+  private drawPaths(geometry: Geometry): void {
+    const paths: string[] = [];
+    this.edges.forEach((edge, i) => {
+      const d = polylinePath(geometry.edges[i] ?? []);
+      paths.push(d);
+      edge.element.setAttribute('d', d);
+    });
     // One white casing under all edges keeps crossing lines apart.
-    casingLayer.append(svg('path', { class: 'edge-casing', d: paths.join('') }));
+    this.casing.setAttribute('d', paths.join(''));
+    this.gridPath.setAttribute('d', geometry.grid.map(polylinePath).join(''));
   }
 
   private drawStation(layer: SVGGElement, feature: StationFeature, frame: Frame, lines: Map<string, MetroLine>): void {
@@ -209,7 +303,15 @@ export class MetroLayers {
   private listen(): void {
     const options = { signal: this.listeners.signal };
     const svgElement = this.map.svg;
-    svgElement.addEventListener('click', (event) => this.onPick(this.pickAt(event.target)?.pick ?? null), options);
+    svgElement.addEventListener(
+      'click',
+      (event) => {
+        // Cluster markers are the cluster layer's to handle.
+        if (event.target instanceof Element && event.target.closest('.cluster')) return;
+        this.onPick(this.pickAt(event.target)?.pick ?? null);
+      },
+      options,
+    );
     svgElement.addEventListener(
       'pointerover',
       (event) => {
@@ -228,7 +330,7 @@ export class MetroLayers {
     this.tooltip.hide();
     this.sizeMarkers();
     const markers = [...this.stations.values()].map((station) => station.anchor);
-    placeLabels(this.map, this.labels, markers);
+    placeLabels(this.map, this.labels, markers, this.obstacles());
   }
 }
 
@@ -237,11 +339,12 @@ function labelPriority(station: StationFeature): number {
   return station.properties.lines.length;
 }
 
-function medianGap(edges: EdgeFeature[], frame: Frame): number {
+function medianGap(edges: Pt[][]): number {
   const gaps = edges
-    .map(({ geometry: { coordinates } }) => {
-      const [x0, y0] = frame.project(coordinates[0]!);
-      const [x1, y1] = frame.project(coordinates[coordinates.length - 1]!);
+    .filter((points) => points.length > 1)
+    .map((points) => {
+      const [x0, y0] = points[0]!;
+      const [x1, y1] = points[points.length - 1]!;
       return Math.hypot(x1 - x0, y1 - y0);
     })
     .filter((gap) => gap > 0)

@@ -2,7 +2,7 @@ import { ApiError } from '../api/client';
 import { h } from './dom';
 
 /** A readable sentence for any failure, with the API's error code where there is one. */
-function describeError(error: unknown): string {
+export function describeError(error: unknown): string {
   if (error instanceof ApiError) {
     return error.status === 0 ? error.message : `${error.message} (HTTP ${error.status}, ${error.code})`;
   }

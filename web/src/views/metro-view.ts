@@ -1,25 +1,91 @@
-import { fetchCities, fetchCity, fetchMetro, fetchPois, isAbort } from '../api/client';
-import type { CitySummary, LastImport, PoiCollection, StationFeature } from '../api/types';
+import {
+  clustersPath,
+  fetchCities,
+  fetchCity,
+  fetchClusters,
+  fetchLayout,
+  fetchMetro,
+  fetchPois,
+  fetchVisualWorth,
+  isAbort,
+  type LayoutAnswer,
+} from '../api/client';
+import type {
+  BBox,
+  CitySummary,
+  ClusterSpace,
+  LastImport,
+  LayoutParams,
+  PoiCluster,
+  PoiCollection,
+  StationFeature,
+  VisualWorthRaster,
+  XY,
+} from '../api/types';
 import { mapControls } from '../map/controls';
 import { extendBBox } from '../map/bbox';
-import { frameFor } from '../map/projection';
+import { frameFor, type Frame } from '../map/projection';
 import { SvgMap, type Insets } from '../map/svg-map';
+import { ClusterLayer, type ClusterPick } from '../metro/cluster-layer';
 import { poiDetails, stationDetails, type DetailsContext } from '../metro/details';
+import { HeatLayer } from '../metro/heat-layer';
+import { LatestRequest } from '../metro/latest-request';
+import { geoGrid, layoutGeometry, Placement } from '../metro/layout-geometry';
+import { LayoutInfo } from '../metro/layout-info';
 import { Legend } from '../metro/legend';
+import { MapOptions, type MapMode } from '../metro/map-options';
 import { MetroLayers, type MetroPick } from '../metro/metro-layers';
+import { carry, easeInOutCubic, geometryBounds, Morph, type Geometry, type Pt } from '../metro/morph';
 import { attributionBox, showAttribution } from '../ui/attribution';
 import { DetailsPanel } from '../ui/details-panel';
 import { h } from '../ui/dom';
+import { MapNotice } from '../ui/notice';
 import { StatusOverlay } from '../ui/status';
 import type { View } from './view';
 
 const NO_POIS: Pick<PoiCollection, 'features' | 'attribution'> = { features: [], attribution: [] };
+/** Clusters shown as markers (and as many more as dots). */
+const CLUSTER_M = 10;
+/** Quiet time after a pan or zoom before clusters and heat map are asked for. */
+const REFRESH_DELAY_MS = 180;
+const MORPH_MS = 750;
+/** The heat map's longest side, in raster cells. */
+const HEAT_MAX_SIDE = 256;
+/** The geographic heat map covers this much more than the window on each side, so a pan shows no edge at once. */
+const HEAT_MARGIN = 0.15;
+/** A click on a cluster zooms in this much around it. */
+const CLUSTER_ZOOM = 2.5;
 
 const plural = (n: number, word: string) => `${n.toLocaleString()} ${word}${n === 1 ? '' : 's'}`;
+const lerp = (a: number, b: number, t: number) => a + (b - a) * t;
+
+function reducedMotion(): boolean {
+  return window.matchMedia('(prefers-reduced-motion: reduce)').matches;
+}
+
+/** A layout ready to draw: the answer, where it goes on the map, and the two drawings it morphs between. */
+interface LayoutEntry extends LayoutAnswer {
+  key: string;
+  params: LayoutParams;
+  placement: Placement;
+  /** The octilinear drawing. */
+  geometry: Geometry;
+  /** The geographic drawing with the layout's regular mesh. */
+  geoGeometry: Geometry;
+  /** The POIs' warped positions in the layout frame, by id. */
+  poiPositions: Map<string, XY>;
+  /** The heat map of the whole mesh (asked for once, when first shown). */
+  heat?: Promise<VisualWorthRaster>;
+}
 
 /**
- * The Metro view: a city picker and the city's metro network and POIs on a geographic map.
- * The map element's data-status (loading, ready, error) and data-city tell tests when it is drawn.
+ * The Metro view: a city picker and the city's metro network and POIs, drawn geographically or
+ * as the transit-centric octilinear layout (morphing between the two), with the visual worth
+ * heat map and the POIs as clusters of the window shown.
+ *
+ * The map element reports data-status (loading, ready, error) and data-city (drawn), data-mode
+ * (geographic, octilinear: the drawing shown once a morph is over), data-transition (running,
+ * idle) and data-layout (loading, ready, error) for tests.
  */
 export class MetroView implements View {
   readonly element: HTMLElement;
@@ -28,6 +94,9 @@ export class MetroView implements View {
   private readonly map: SvgMap;
   private readonly legend: Legend;
   private readonly details: DetailsPanel;
+  private readonly options: MapOptions;
+  private readonly info = new LayoutInfo();
+  private readonly notice = new MapNotice();
   private readonly status = new StatusOverlay();
   private readonly attribution = attributionBox();
   private cities?: CitySummary[];
@@ -35,8 +104,29 @@ export class MetroView implements View {
   private wanted?: string;
   private drawn?: string;
   private layers?: MetroLayers;
+  private clusters?: ClusterLayer;
+  private heat?: HeatLayer;
+  private frame?: Frame;
+  private city?: CitySummary;
   private context?: DetailsContext;
   private cityLoad?: AbortController;
+  /** Layouts of the drawn city by parameters, asked for or ready. */
+  private readonly layouts = new Map<string, Promise<LayoutEntry>>();
+  private readonly layoutsReady = new Set<string>();
+  /** The layout drawn (octilinear) or last drawn (its mesh stays for the warp grid). */
+  private shownLayout?: LayoutEntry;
+  /** Counts mode and parameter changes: an answer for an older one is not drawn. */
+  private modeRequest = 0;
+  private animation = 0;
+  private morphing = false;
+  /** The drawing shown once the morph is over: what clusters and heat map are asked for. */
+  private drawnMode: MapMode = 'geographic';
+  private refreshTimer = 0;
+  private readonly clusterRequest = new LatestRequest<{ space: ClusterSpace; answer: Awaited<ReturnType<typeof fetchClusters>> }>();
+  private readonly heatRequest = new LatestRequest<VisualWorthRaster>();
+  /** What the heat map shows: a window's raster or a layout's warped one (by key). */
+  private heatShown?: string;
+  private clusterAnswers = 0;
 
   constructor(private readonly go: (cityId: string, replace: boolean) => void) {
     this.picker = h('select', { id: 'city-picker', 'data-testid': 'city-picker', disabled: true });
@@ -45,26 +135,50 @@ export class MetroView implements View {
 
     this.map = new SvgMap('Metro map');
     this.map.element.dataset.testid = 'metro-map';
+    this.map.element.dataset.mode = 'geographic';
+    this.map.element.dataset.transition = 'idle';
     this.legend = new Legend({
       onHighlight: (lineId) => this.layers?.highlightLine(lineId),
-      onPoisVisible: (visible) => this.layers?.setPoisVisible(visible),
+      onPoisVisible: () => this.applyPoiMode(),
       onLabelsVisible: (visible) => this.layers?.setLabelsVisible(visible),
+    });
+    this.options = new MapOptions({
+      onMode: (mode) => (mode === 'octilinear' ? void this.showOctilinear() : this.showGeographic()),
+      onLayoutParams: () => {
+        if (this.options.state.mode === 'octilinear') void this.showOctilinear();
+      },
+      onHeat: () => this.refreshHeat(),
+      onGrid: (visible) => {
+        this.layers?.setGridVisible(visible);
+        this.describeGrid();
+      },
+      onPoiMode: () => this.applyPoiMode(),
     });
     this.details = new DetailsPanel(() => this.pick(null));
     this.map.setFitInsets(() => this.overlayInsets());
+    this.map.onSettle(() => this.scheduleRefresh());
 
     this.element = h(
       'section',
       { class: 'view view-metro' },
-      h('div', { class: 'toolbar' }, h('label', { class: 'field', for: 'city-picker' }, 'City'), this.picker, this.summary),
+      h(
+        'div',
+        { class: 'toolbar' },
+        h('label', { class: 'field', for: 'city-picker' }, 'City'),
+        this.picker,
+        this.summary,
+        this.options.element,
+      ),
       h(
         'div',
         { class: 'map-area' },
         this.map.element,
-        this.legend.element,
+        // Legend above, info box below: a column, so neither covers the other.
+        h('div', { class: 'map-side' }, this.legend.element, this.info.element),
         this.details.element,
         mapControls(this.map),
         this.attribution,
+        this.notice.element,
         this.status.element,
       ),
     );
@@ -144,16 +258,29 @@ export class MetroView implements View {
       this.legend.show(metro.lines, pois.features.length, city.poi_categories);
       showAttribution(this.attribution, [...city.attribution, ...metro.attribution, ...pois.attribution]);
       const frame = frameFor(extendBBox(city.bbox, pois.features.map((poi) => poi.geometry.coordinates)));
+      this.map.setFitBounds(null);
       this.map.setFrame(frame);
+      this.frame = frame;
+      this.city = summary;
       this.layers = new MetroLayers(this.map, frame, metro, pois.features, (pick) => this.pick(pick));
-      this.layers.setPoisVisible(this.legend.poisVisible);
+      this.heat = new HeatLayer(this.layers.heatLayer);
+      this.clusters = new ClusterLayer(
+        this.map,
+        this.layers.clusterLayer,
+        (pick) => this.pickCluster(pick),
+        () => this.layers?.placeLabels(),
+      );
+      this.layers.setLabelObstacles(() => this.clusters?.boxes() ?? []);
       this.layers.setLabelsVisible(this.legend.labelsVisible);
+      this.layers.setGridVisible(this.options.state.grid);
+      this.options.setHasPois(pois.features.length > 0);
       this.context = {
         lines: new Map(metro.lines.map((line) => [line.id, line])),
         stations: metro.features.filter((f): f is StationFeature => f.properties.kind === 'station'),
         pois: pois.features,
         onPick: (pick) => this.pick(pick, true),
       };
+      this.applyPoiMode();
       this.summary.textContent = [
         plural(city.counts.stations, 'station'),
         plural(metro.lines.length, 'line'),
@@ -162,6 +289,9 @@ export class MetroView implements View {
       this.status.clear();
       this.map.element.dataset.city = city.id;
       this.map.element.dataset.status = 'ready';
+      this.describeGrid();
+      if (this.options.state.mode === 'octilinear') void this.showOctilinear();
+      this.scheduleRefresh(0);
     } catch (error) {
       if (isAbort(error)) return;
       this.drawn = undefined;
@@ -172,21 +302,393 @@ export class MetroView implements View {
   }
 
   private clearMap(): void {
+    cancelAnimationFrame(this.animation);
+    window.clearTimeout(this.refreshTimer);
+    this.morphing = false;
+    this.drawnMode = 'geographic';
+    this.modeRequest++;
+    this.clusterRequest.cancel();
+    this.heatRequest.cancel();
+    this.heatShown = undefined;
+    this.layouts.clear();
+    this.layoutsReady.clear();
+    this.shownLayout = undefined;
+    this.clusters?.destroy();
+    this.clusters = undefined;
+    this.heat = undefined;
     this.layers?.destroy();
     this.layers = undefined;
+    this.frame = undefined;
+    this.city = undefined;
     this.context = undefined;
     this.details.hide();
     this.legend.hide();
+    this.info.hideLayout();
+    this.info.setHeat(null);
+    this.info.setPlaces(null);
+    this.info.setGrid(null);
+    this.notice.clear();
     this.summary.textContent = '';
     showAttribution(this.attribution, []);
-    delete this.map.element.dataset.city;
+    const data = this.map.element.dataset;
+    delete data.city;
+    delete data.layout;
+    data.mode = 'geographic';
+    data.transition = 'idle';
   }
 
   /** The open legend covers the map's left side, the attribution its foot: fit the network beside them. */
   private overlayInsets(): Insets {
     const legend = this.legend.element;
-    const left = legend.open ? legend.offsetLeft + legend.offsetWidth : 0;
+    const left = legend.open && !legend.hidden ? legend.getBoundingClientRect().right - this.map.element.getBoundingClientRect().left : 0;
     return { top: 0, right: 0, bottom: this.attribution.offsetHeight, left };
+  }
+
+  // ---- Geographic <-> octilinear ----
+
+  private layoutParams(): LayoutParams {
+    return { lengths: this.options.state.lengths, solver: this.options.state.solver };
+  }
+
+  /** The layout for the parameters, asked for once per city and parameters (a failure is forgotten). */
+  private layoutFor(city: CitySummary, params: LayoutParams, signal: AbortSignal): Promise<LayoutEntry> {
+    const key = `${city.id}|${params.lengths}|${params.solver}`;
+    let entry = this.layouts.get(key);
+    if (!entry) {
+      const layers = this.layers!;
+      const frame = this.frame!;
+      entry = fetchLayout(city.id, params, signal).then((answer) => {
+        const placement = Placement.fit(answer.layout, frame);
+        this.layoutsReady.add(key);
+        return {
+          ...answer,
+          key,
+          params,
+          placement,
+          geometry: layoutGeometry(answer.layout, placement, layers.drawnEdges, layers.geo),
+          geoGeometry: { ...layers.geo, grid: geoGrid(answer.layout, placement) },
+          poiPositions: new Map(answer.layout.pois.features.map((poi) => [poi.properties.id, poi.geometry.coordinates])),
+        };
+      });
+      entry.catch(() => this.layouts.delete(key));
+      this.layouts.set(key, entry);
+    }
+    return entry;
+  }
+
+  private async showOctilinear(): Promise<void> {
+    const city = this.city;
+    const layers = this.layers;
+    const load = this.cityLoad;
+    if (!city || !layers || !load) return;
+    const request = ++this.modeRequest;
+    const params = this.layoutParams();
+    const key = `${city.id}|${params.lengths}|${params.solver}`;
+    const data = this.map.element.dataset;
+    if (!this.layoutsReady.has(key)) {
+      data.layout = 'loading';
+      this.info.loading(
+        city.name,
+        params.solver === 'mip'
+          ? 'The MIP solver runs for up to 10 s. The map stays geographic until the layout arrives.'
+          : 'The first layout of a city takes up to ~10 s for large networks (later ones are cached). The map stays geographic until it arrives.',
+      );
+    }
+    let entry: LayoutEntry;
+    try {
+      entry = await this.layoutFor(city, params, load.signal);
+    } catch (error) {
+      if (isAbort(error) || request !== this.modeRequest || this.layers !== layers) return;
+      data.layout = 'error';
+      // The layout drawn stays, and the switches say which one it is.
+      if (this.shownLayout && this.drawnMode === 'octilinear') {
+        this.info.showLayout(this.shownLayout);
+        this.options.setLayoutParams(this.shownLayout.params.lengths, this.shownLayout.params.solver);
+      } else {
+        this.info.hideLayout();
+      }
+      this.notice.error('layout', `Could not compute the octilinear layout of ${city.name}`, error, () => {
+        this.options.setMode('octilinear');
+        this.options.setLayoutParams(params.lengths, params.solver);
+        void this.showOctilinear();
+      });
+      // Nothing else to show: back to the geographic map.
+      if (this.drawnMode !== 'octilinear') this.options.setMode('geographic');
+      return;
+    }
+    if (request !== this.modeRequest || this.layers !== layers) return;
+    this.notice.clear('layout');
+    this.shownLayout = entry;
+    data.layout = 'ready';
+    this.info.showLayout(entry);
+    this.morphTo(entry.geometry, 'octilinear');
+  }
+
+  private showGeographic(): void {
+    this.modeRequest++;
+    const layers = this.layers;
+    this.info.hideLayout();
+    if (this.map.element.dataset.layout === 'loading') delete this.map.element.dataset.layout;
+    if (!layers) return;
+    this.morphTo(this.shownLayout?.geoGeometry ?? layers.geo, 'geographic');
+  }
+
+  /**
+   * Morphs from what is drawn (even halfway through another morph) to `target`, eased, while the
+   * view follows: a fitted map is fitted to the target, otherwise the place at the centre of the
+   * window stays there (carried by the nearby stations' moves). Clusters and heat map are hidden
+   * meanwhile and asked for again at the end.
+   */
+  private morphTo(target: Geometry, mode: MapMode): void {
+    const layers = this.layers;
+    if (!layers) return;
+    cancelAnimationFrame(this.animation);
+    window.clearTimeout(this.refreshTimer);
+    this.clusterRequest.cancel();
+    this.heatRequest.cancel();
+    this.clusters?.clear();
+    this.heat?.clear();
+    this.heatShown = undefined;
+    this.info.setPlaces(null);
+    this.info.setHeat(null);
+
+    const from = layers.geometry;
+    const morph = new Morph(from, target);
+    this.map.setFitBounds(mode === 'octilinear' ? geometryBounds(target) : null);
+    const { width, height } = this.map.size;
+    const start = this.map.view;
+    const fitted = this.map.followingFit ? this.map.fitTransform() : null;
+    const centre0 = this.map.toFrame(width / 2, height / 2);
+    // A fitted map ends fitted; otherwise the centre goes where the stations around it go.
+    const centre1: Pt = fitted ? [(width / 2 - fitted.x) / fitted.k, (height / 2 - fitted.y) / fitted.k] : carry(centre0, from.stations, target.stations);
+    const k1 = fitted ? fitted.k : start.k;
+    const gestures = this.map.gestureCount;
+    const duration = reducedMotion() ? 0 : MORPH_MS;
+    const data = this.map.element.dataset;
+    this.morphing = true;
+    data.transition = 'running';
+    data.morphTo = mode;
+    const started = performance.now();
+    let frames = 0;
+
+    const step = (now: number) => {
+      const t = duration > 0 ? Math.min(1, (now - started) / duration) : 1;
+      const e = easeInOutCubic(t);
+      layers.setGeometry(morph.at(e), t >= 1);
+      // The user's own pan or zoom meanwhile wins over the view's move.
+      if (this.map.gestureCount === gestures && width > 0 && height > 0) {
+        const k = start.k * (k1 / start.k) ** e;
+        const cx = lerp(centre0[0], centre1[0], e);
+        const cy = lerp(centre0[1], centre1[1], e);
+        this.map.jumpTo(width / 2 - cx * k, height / 2 - cy * k, k);
+      }
+      frames++;
+      data.morphFrames = String(frames);
+      if (t < 1) {
+        this.animation = requestAnimationFrame(step);
+        return;
+      }
+      this.animation = 0;
+      this.morphing = false;
+      this.drawnMode = mode;
+      data.mode = mode;
+      data.transition = 'idle';
+      this.describeGrid();
+      this.map.settle();
+    };
+    this.animation = requestAnimationFrame(step);
+  }
+
+  /** Says what the warp grid shows, or why there is none. */
+  private describeGrid(): void {
+    if (!this.options.state.grid || !this.layers) {
+      this.info.setGrid(null);
+      return;
+    }
+    this.info.setGrid(
+      !this.shownLayout
+        ? 'Warp grid: it comes with the octilinear layout. Switch to Octilinear.'
+        : this.drawnMode === 'octilinear'
+          ? 'Warp grid: a regular 21 × 21 mesh and the network’s outline, warped with the layout: where cells grew, space went to places worth seeing.'
+          : 'Warp grid: the regular mesh (and the network’s outline) that the octilinear layout warps.',
+    );
+  }
+
+  // ---- Clusters and heat map, for the window shown ----
+
+  private scheduleRefresh(delay = REFRESH_DELAY_MS): void {
+    window.clearTimeout(this.refreshTimer);
+    if (this.morphing) return; // the morph's end asks again
+    this.refreshTimer = window.setTimeout(() => {
+      this.refreshClusters();
+      this.refreshHeat();
+    }, delay);
+  }
+
+  /** The window in frame units: [x0, y0, x1, y1] (y down), or null when the map has no size. */
+  private windowFrame(margin = 0): [Pt, Pt] | null {
+    const { width, height } = this.map.size;
+    if (width === 0 || height === 0) return null;
+    const [x0, y0] = this.map.toFrame(-margin * width, -margin * height);
+    const [x1, y1] = this.map.toFrame((1 + margin) * width, (1 + margin) * height);
+    return [
+      [x0, y0],
+      [x1, y1],
+    ];
+  }
+
+  private windowLonLat(margin = 0): BBox | null {
+    const window = this.windowFrame(margin);
+    if (!window || !this.frame) return null;
+    const [west, north] = this.frame.unproject(...window[0]);
+    const [east, south] = this.frame.unproject(...window[1]);
+    return [west, south, east, north];
+  }
+
+  private applyPoiMode(): void {
+    const clustered = this.options.state.pois === 'clusters';
+    this.layers?.setPoisVisible(this.legend.poisVisible, clustered);
+    this.refreshClusters();
+  }
+
+  private refreshClusters(): void {
+    const { city, clusters, frame } = this;
+    const data = clusters ? this.layers?.clusterLayer.dataset : undefined;
+    if (!city || !clusters || !frame || !data || this.morphing) return;
+    if (city.counts.pois === 0 || !this.legend.poisVisible || this.options.state.pois !== 'clusters') {
+      this.clusterRequest.cancel();
+      clusters.clear();
+      data.status = 'off';
+      this.info.setPlaces(null);
+      return;
+    }
+    const window = this.windowFrame();
+    if (!window) return;
+    const layout = this.drawnMode === 'octilinear' ? this.shownLayout : undefined;
+    const space: ClusterSpace = layout ? 'layout' : 'geo';
+    let bbox: [number, number, number, number];
+    let toFrame: (position: [number, number]) => Pt;
+    // In layout space the API gives the cluster's centre as its representative's position: the
+    // layout's own POI positions say where the representative is.
+    const representativeAt = (cluster: PoiCluster) => layout?.poiPositions.get(cluster.representative.id);
+    if (layout) {
+      const [ax, ay] = layout.placement.fromFrame(window[0]);
+      const [bx, by] = layout.placement.fromFrame(window[1]);
+      bbox = [Math.min(ax, bx), Math.min(ay, by), Math.max(ax, bx), Math.max(ay, by)];
+      toFrame = (position) => layout.placement.toFrame(position);
+    } else {
+      bbox = this.windowLonLat()!;
+      toFrame = (position) => frame.project(position);
+    }
+    const query = { space, bbox, m: CLUSTER_M, layout: layout?.params };
+    data.status = 'loading';
+    const started = performance.now();
+    this.clusterRequest.run(
+      (signal) => fetchClusters(city.id, query, signal).then((answer) => ({ space, answer })),
+      ({ answer }) => {
+        // The request the markers answer (tests ask the API the same).
+        data.query = clustersPath(city.id, query);
+        const ms = performance.now() - started;
+        clusters.show(answer, space, toFrame, representativeAt);
+        this.clusterAnswers++;
+        data.status = 'ready';
+        data.requests = String(this.clusterAnswers);
+        data.latencyMs = ms.toFixed(1);
+        this.notice.clear('clusters');
+        const previews = answer.previews.length > 0 ? `, ${answer.previews.length} more as dots` : '';
+        this.info.setPlaces(
+          answer.active === 0
+            ? 'No cluster of places fits in this window: zoom out or pan.'
+            : `Places: the ${plural(answer.clusters.length, 'most prominent cluster')} of ${answer.active} in view${previews} (${space === 'geo' ? 'geographic' : 'layout'} space, ${Math.round(ms)} ms)`,
+        );
+      },
+      (error) => {
+        data.status = 'error';
+        this.notice.error('clusters', 'Could not load the clusters of places', error, () => this.refreshClusters());
+      },
+    );
+  }
+
+  private refreshHeat(): void {
+    const { city, heat, frame } = this;
+    if (!city || !heat || !frame || this.morphing) return;
+    if (!this.options.state.heat) {
+      this.heatRequest.cancel();
+      heat.clear();
+      this.heatShown = undefined;
+      this.info.setHeat(null);
+      return;
+    }
+    const layout = this.drawnMode === 'octilinear' ? this.shownLayout : undefined;
+    if (layout) {
+      this.info.setHeat("Warped into the layout through its 21 × 21 mesh: a coarse picture of where the visual worth went.");
+      if (this.heatShown === layout.key) return;
+      layout.heat ??= this.meshRaster(city, layout, frame);
+      const request = this.modeRequest;
+      this.heatRequest.run(
+        () => layout.heat!,
+        (raster) => {
+          if (request !== this.modeRequest || this.shownLayout !== layout) return;
+          heat.showWarped(raster, layout.layout, layout.placement, frame);
+          this.heatShown = layout.key;
+          this.notice.clear('heat');
+        },
+        (error) => {
+          layout.heat = undefined;
+          this.notice.error('heat', 'Could not load the visual worth heat map', error, () => this.refreshHeat());
+        },
+      );
+      return;
+    }
+    const bbox = this.windowLonLat(HEAT_MARGIN);
+    const { width, height } = this.map.size;
+    if (!bbox || width === 0) return;
+    const scale = Math.min(1, HEAT_MAX_SIDE / ((1 + 2 * HEAT_MARGIN) * Math.max(width, height)));
+    const cells = (pixels: number) => Math.max(1, Math.round((1 + 2 * HEAT_MARGIN) * pixels * scale));
+    this.info.setHeat('Visual worth of the places of interest (eq. 5.1), for the window shown.');
+    this.heatRequest.run(
+      (signal) => fetchVisualWorth(city.id, bbox, cells(width), cells(height), signal),
+      (raster) => {
+        heat.showRaster(raster, frame);
+        this.heatShown = 'window';
+        this.notice.clear('heat');
+      },
+      (error) => this.notice.error('heat', 'Could not load the visual worth heat map', error, () => this.refreshHeat()),
+    );
+  }
+
+  /** A raster of the lon/lat box around the layout's geographic mesh, for warping. */
+  private meshRaster(city: CitySummary, layout: LayoutEntry, frame: Frame): Promise<VisualWorthRaster> {
+    const positions = layout.layout.mesh.geo.map((p) => frame.unproject(...layout.placement.toFrame(p)));
+    const lons = positions.map(([lon]) => lon);
+    const lats = positions.map(([, lat]) => lat);
+    const bbox: BBox = [Math.min(...lons), Math.min(...lats), Math.max(...lons), Math.max(...lats)];
+    const [x0, y0] = frame.project([bbox[0], bbox[3]]);
+    const [x1, y1] = frame.project([bbox[2], bbox[1]]);
+    const scale = HEAT_MAX_SIDE / Math.max(x1 - x0, y1 - y0);
+    const width = Math.max(1, Math.round((x1 - x0) * scale));
+    const height = Math.max(1, Math.round((y1 - y0) * scale));
+    return fetchVisualWorth(city.id, bbox, width, height);
+  }
+
+  // ---- Picks ----
+
+  /** A cluster marker: its representative's details, and a zoom into the cluster. */
+  private pickCluster(pick: ClusterPick): void {
+    const context = this.context;
+    if (!context) return;
+    const { cluster } = pick;
+    const poi = context.pois.find((candidate) => candidate.properties.id === cluster.representative.id);
+    this.layers?.select(poi ? { kind: 'poi', poi } : null);
+    const intro =
+      cluster.size > 1
+        ? h('p', { class: 'cluster-summary' }, `The most prominent of ${plural(cluster.size, 'place')} in this cluster.`)
+        : null;
+    const zoom = cluster.size > 1 ? h('button', { type: 'button', class: 'button button-quiet cluster-zoom' }, 'Zoom in on the cluster') : null;
+    zoom?.addEventListener('click', () => this.map.zoomTo(pick.center[0], pick.center[1], CLUSTER_ZOOM));
+    const body = poi ? poiDetails(poi, context) : [h('p', { class: 'details-kind' }, cluster.representative.category)];
+    this.details.show(cluster.representative.name, [intro, zoom, ...body].filter((node): node is HTMLElement => node !== null));
+    if (cluster.size > 1) this.map.zoomTo(pick.center[0], pick.center[1], CLUSTER_ZOOM);
   }
 
   /** Shows a picked station or POI; `reveal` also moves the map to it (picked from a list). */

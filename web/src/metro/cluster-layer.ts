@@ -1,0 +1,288 @@
+import type { ClusterSpace, ClustersResponse, PoiCluster } from '../api/types';
+import { LABEL_FONT, labelWidth, type Box } from '../map/labels';
+import { svg } from '../map/svg';
+import type { Anchor, SvgMap } from '../map/svg-map';
+import { MapTooltip } from '../map/tooltip';
+import type { Pt } from './morph';
+
+export interface ClusterPick {
+  cluster: PoiCluster;
+  /** Where the marker stands (its representative POI), in frame units. */
+  point: Pt;
+  /** The cluster's centre, in frame units. */
+  center: Pt;
+  preview: boolean;
+}
+
+/** A thumbnail's radius, and the pin's head centre above the point. */
+const THUMB_RADIUS = 19;
+const THUMB_Y = -30;
+const HEAD_RADIUS = 11;
+const HEAD_Y = -19;
+const PREVIEW_RADIUS = 4;
+const NAME_MAX = 30;
+
+let clipIds = 0;
+
+/** Only web images: the data comes from imported files. */
+function httpUrl(value: string | undefined): string | undefined {
+  if (!value) return undefined;
+  try {
+    const url = new URL(value);
+    return url.protocol === 'http:' || url.protocol === 'https:' ? url.href : undefined;
+  } catch {
+    return undefined;
+  }
+}
+
+const shorten = (text: string) => (text.length > NAME_MAX ? `${text.slice(0, NAME_MAX - 1).trimEnd()}…` : text);
+
+interface Marker {
+  pick: ClusterPick;
+  element: SVGGElement;
+  anchor: Anchor;
+  /** Offsets of the marker's box from the point, in pixels. */
+  box: Box;
+  /** The representative's name, right of the pin or else left of it; `box` is where it is now. */
+  name?: { text: SVGTextElement; right: Box; left: Box; box: Box };
+}
+
+/**
+ * The active POI clusters of the window: the top ones as markers standing on their
+ * representative POI (its photo in a round frame, or a pin with the cluster's size and the
+ * POI's name), the previews as small dots. The layer reports what it shows in data-cluster-ids
+ * (markers, by prominence), data-preview-ids and data-space.
+ */
+export class ClusterLayer {
+  private markers: Marker[] = [];
+  private readonly clipId = `cluster-thumb-${++clipIds}`;
+  private readonly tooltip: MapTooltip;
+  private readonly listeners = new AbortController();
+  private readonly stopRender: () => void;
+
+  constructor(
+    private readonly map: SvgMap,
+    private readonly layer: SVGGElement,
+    private readonly onPick: (pick: ClusterPick) => void,
+    /** Called after the markers changed (station names make way for them). */
+    private readonly onChange: () => void,
+  ) {
+    layer.dataset.testid = 'cluster-layer';
+    const defs = svg('defs');
+    const clip = svg('clipPath', { id: this.clipId, clipPathUnits: 'userSpaceOnUse' });
+    clip.append(svg('circle', { cx: 0, cy: THUMB_Y, r: THUMB_RADIUS - 2 }));
+    defs.append(clip);
+    layer.append(defs);
+    this.tooltip = new MapTooltip(map.element);
+    this.listen();
+    this.stopRender = map.onRender(() => this.hideCrowdedNames());
+    this.clear();
+  }
+
+  /**
+   * Shows an answer of /clusters; `toFrame` puts its positions (lon/lat or layout metres) on the
+   * map, `representativeAt` may say better where a representative is (in the same units).
+   */
+  show(
+    answer: ClustersResponse,
+    space: ClusterSpace,
+    toFrame: (position: [number, number]) => Pt,
+    representativeAt: (cluster: PoiCluster) => [number, number] | undefined = () => undefined,
+  ): void {
+    this.removeMarkers();
+    const place = (cluster: PoiCluster) => ({
+      point: toFrame(representativeAt(cluster) ?? cluster.representative.position),
+      center: toFrame(cluster.center),
+    });
+    const previews = answer.previews.map((cluster) => this.drawPreview(cluster, place(cluster)));
+    // Least prominent first, so the most prominent is drawn on top.
+    const top = answer.clusters.map((cluster) => this.drawMarker(cluster, place(cluster)));
+    for (const marker of [...top].reverse()) this.layer.append(marker.element);
+    this.markers = [...previews, ...top];
+    this.layer.dataset.space = space;
+    this.layer.dataset.clusterIds = answer.clusters.map((cluster) => cluster.id).join(' ');
+    this.layer.dataset.previewIds = answer.previews.map((cluster) => cluster.id).join(' ');
+    this.layer.dataset.active = String(answer.active);
+    this.hideCrowdedNames();
+    this.onChange();
+  }
+
+  clear(): void {
+    this.removeMarkers();
+    this.layer.dataset.clusterIds = '';
+    this.layer.dataset.previewIds = '';
+    this.layer.dataset.active = '0';
+    delete this.layer.dataset.space;
+    this.onChange();
+  }
+
+  /** Screen boxes of the markers and their names, for station names to keep clear of. */
+  boxes(): Box[] {
+    if (this.layer.style.display === 'none') return [];
+    const out: Box[] = [];
+    for (const marker of this.markers) {
+      const [x, y] = this.map.toScreen(marker.anchor.x, marker.anchor.y);
+      const shift = (box: Box): Box => ({ x0: x + box.x0, y0: y + box.y0, x1: x + box.x1, y1: y + box.y1 });
+      out.push(shift(marker.box));
+      if (marker.name && marker.name.text.getAttribute('visibility') !== 'hidden') out.push(shift(marker.name.box));
+    }
+    return out;
+  }
+
+  destroy(): void {
+    this.listeners.abort();
+    this.stopRender();
+    this.tooltip.destroy();
+    this.removeMarkers();
+  }
+
+  private removeMarkers(): void {
+    this.map.removeAnchors(this.markers.map((marker) => marker.anchor));
+    for (const marker of this.markers) marker.element.remove();
+    this.markers = [];
+    this.tooltip.hide();
+  }
+
+  private drawPreview(cluster: PoiCluster, { point, center }: { point: Pt; center: Pt }): Marker {
+    const element = svg('g', { class: 'cluster cluster-preview', 'data-id': cluster.id, 'data-size': cluster.size });
+    element.append(svg('circle', { r: PREVIEW_RADIUS }));
+    this.layer.append(element);
+    const r = PREVIEW_RADIUS + 1;
+    return { pick: { cluster, point, center, preview: true }, element, anchor: this.map.anchor(element, point), box: { x0: -r, y0: -r, x1: r, y1: r } };
+  }
+
+  private drawMarker(cluster: PoiCluster, { point, center }: { point: Pt; center: Pt }): Marker {
+    const { representative, size } = cluster;
+    const image = httpUrl(representative.image);
+    const element = svg('g', {
+      class: `cluster cluster-marker ${image ? 'with-image' : 'with-name'}`,
+      'data-id': cluster.id,
+      'data-size': size,
+      'data-representative': representative.id,
+      role: 'button',
+      'aria-label': `${representative.name}${size > 1 ? `, and ${size - 1} more places` : ''}`,
+    });
+    const marker: Marker = { pick: { cluster, point, center, preview: false }, element, anchor: this.map.anchor(element, point), box: { x0: 0, y0: 0, x1: 0, y1: 0 } };
+    if (image) this.drawThumbnail(marker, image);
+    else this.drawPin(marker);
+    return marker;
+  }
+
+  /** A round photo on a short stem, with the cluster's size on a badge. */
+  private drawThumbnail(marker: Marker, href: string): void {
+    const { element, pick } = marker;
+    element.append(
+      svg('path', { class: 'cluster-stem', d: `M0 0L-5 ${THUMB_Y + THUMB_RADIUS - 3}L5 ${THUMB_Y + THUMB_RADIUS - 3}Z` }),
+      svg('circle', { class: 'cluster-frame', cy: THUMB_Y, r: THUMB_RADIUS }),
+    );
+    const photo = svg('image', {
+      href,
+      x: -THUMB_RADIUS,
+      y: THUMB_Y - THUMB_RADIUS,
+      width: 2 * THUMB_RADIUS,
+      height: 2 * THUMB_RADIUS,
+      preserveAspectRatio: 'xMidYMid slice',
+      'clip-path': `url(#${this.clipId})`,
+    });
+    // A photo that cannot be loaded turns the marker into a named pin.
+    photo.addEventListener('error', () => {
+      element.replaceChildren();
+      element.classList.replace('with-image', 'with-name');
+      this.drawPin(marker);
+      this.hideCrowdedNames();
+      this.onChange();
+    });
+    element.append(photo);
+    if (pick.cluster.size > 1) {
+      const badge = svg('g', { class: 'cluster-badge', transform: `translate(${THUMB_RADIUS - 3},${THUMB_Y - THUMB_RADIUS + 3})` });
+      const text = svg('text', { 'text-anchor': 'middle', dy: 4 });
+      text.textContent = String(pick.cluster.size);
+      badge.append(svg('circle', { r: 9 }), text);
+      element.append(badge);
+    }
+    marker.box = { x0: -THUMB_RADIUS, y0: THUMB_Y - THUMB_RADIUS - 6, x1: THUMB_RADIUS + 6, y1: 2 };
+  }
+
+  /** A pin with the cluster's size in its head and the representative's name beside it. */
+  private drawPin(marker: Marker): void {
+    const { element, pick } = marker;
+    const size = pick.cluster.size;
+    element.append(
+      svg('path', { class: 'cluster-stem', d: `M0 0L-4 ${HEAD_Y + HEAD_RADIUS - 3}L4 ${HEAD_Y + HEAD_RADIUS - 3}Z` }),
+      svg('circle', { class: 'cluster-head', cy: HEAD_Y, r: HEAD_RADIUS }),
+    );
+    const count = svg('text', { class: 'cluster-count', 'text-anchor': 'middle', y: HEAD_Y, dy: 4 });
+    count.textContent = size > 1 ? String(size) : '1';
+    const name = svg('text', { class: 'cluster-name', x: HEAD_RADIUS + 4, y: HEAD_Y, dy: 4 });
+    name.style.font = LABEL_FONT;
+    const label = shorten(pick.cluster.representative.name);
+    name.textContent = label;
+    element.append(count, name);
+    const width = labelWidth(label);
+    marker.box = { x0: -HEAD_RADIUS, y0: HEAD_Y - HEAD_RADIUS, x1: HEAD_RADIUS, y1: 2 };
+    const right = { x0: HEAD_RADIUS + 2, y0: HEAD_Y - 9, x1: HEAD_RADIUS + 6 + width, y1: HEAD_Y + 9 };
+    const left = { x0: -HEAD_RADIUS - 6 - width, y0: HEAD_Y - 9, x1: -HEAD_RADIUS - 2, y1: HEAD_Y + 9 };
+    marker.name = { text: name, right, left, box: right };
+  }
+
+  /**
+   * Names go right of their pin, or left, where they cover no marker and no name placed before
+   * (by prominence); a name with room on neither side is hidden.
+   */
+  private hideCrowdedNames(): void {
+    const overlaps = (a: Box, b: Box) => a.x0 < b.x1 && b.x0 < a.x1 && a.y0 < b.y1 && b.y0 < a.y1;
+    const top = this.markers.filter((marker) => !marker.pick.preview);
+    const placed = top.map((marker) => {
+      const [x, y] = this.map.toScreen(marker.anchor.x, marker.anchor.y);
+      const shift = (box: Box): Box => ({ x0: x + box.x0, y0: y + box.y0, x1: x + box.x1, y1: y + box.y1 });
+      return { marker, box: shift(marker.box), shift };
+    });
+    const taken: Box[] = placed.map(({ box }) => box);
+    for (const { marker, box, shift } of placed) {
+      const name = marker.name;
+      if (!name) continue;
+      const side = [name.right, name.left].find((candidate) => {
+        const screen = shift(candidate);
+        return !taken.some((other) => other !== box && overlaps(screen, other));
+      });
+      name.text.setAttribute('visibility', side ? 'visible' : 'hidden');
+      if (!side) continue;
+      name.box = side;
+      const onLeft = side === name.left;
+      name.text.setAttribute('x', String(onLeft ? -HEAD_RADIUS - 4 : HEAD_RADIUS + 4));
+      name.text.setAttribute('text-anchor', onLeft ? 'end' : 'start');
+      taken.push(shift(side));
+    }
+  }
+
+  private markerAt(target: EventTarget | null): Marker | undefined {
+    const element = target instanceof Element ? target.closest('.cluster') : null;
+    return element ? this.markers.find((marker) => marker.element === element) : undefined;
+  }
+
+  private listen(): void {
+    const options = { signal: this.listeners.signal };
+    this.layer.addEventListener(
+      'click',
+      (event) => {
+        const marker = this.markerAt(event.target);
+        if (marker) this.onPick(marker.pick);
+      },
+      options,
+    );
+    this.layer.addEventListener(
+      'pointerover',
+      (event) => {
+        const marker = this.markerAt(event.target);
+        if (!marker || event.pointerType !== 'mouse') return;
+        const { cluster } = marker.pick;
+        const more = cluster.size > 1 ? ` · ${cluster.size} places` : '';
+        const [x, y] = this.map.toScreen(marker.anchor.x, marker.anchor.y);
+        this.tooltip.show(`${cluster.representative.name}${more}`, [x, y + (marker.pick.preview ? 0 : marker.box.y0 + 6)]);
+      },
+      options,
+    );
+    this.layer.addEventListener('pointerout', () => this.tooltip.hide(), options);
+    this.layer.addEventListener('pointerdown', () => this.tooltip.hide(), options);
+  }
+}

@@ -1,0 +1,91 @@
+import type { LayoutResponse, XY } from '../api/types';
+import type { Frame } from '../map/projection';
+import type { DrawnEdge } from './metro-layers';
+import type { Geometry, Pt } from './morph';
+
+/**
+ * Puts a layout's planar frame (metres, y north) on the map's frame (Web Mercator units, y
+ * south) by a uniform scale, a flip of y and a translation: angles stay as they are, so an
+ * octilinear layout is drawn octilinear. The scale and translation are fitted (least squares)
+ * to the stations' geographic positions, which the layout gives in both frames; the rest of
+ * the difference between the two projections is a few tens of metres at a city's edge.
+ */
+export class Placement {
+  private constructor(
+    readonly scale: number,
+    private readonly tx: number,
+    private readonly ty: number,
+  ) {}
+
+  static fit(layout: LayoutResponse, frame: Frame): Placement {
+    const pairs = layout.stations.features.map((station) => ({
+      u: [station.properties.geo[0], -station.properties.geo[1]] as Pt,
+      f: frame.project(station.properties.lonlat),
+    }));
+    const n = Math.max(1, pairs.length);
+    const mean = (pick: (pair: (typeof pairs)[number]) => number) => pairs.reduce((sum, pair) => sum + pick(pair), 0) / n;
+    const [ux, uy, fx, fy] = [mean((p) => p.u[0]), mean((p) => p.u[1]), mean((p) => p.f[0]), mean((p) => p.f[1])];
+    let num = 0;
+    let den = 0;
+    for (const { u, f } of pairs) {
+      num += (u[0] - ux) * (f[0] - fx) + (u[1] - uy) * (f[1] - fy);
+      den += (u[0] - ux) ** 2 + (u[1] - uy) ** 2;
+    }
+    // One station (or none): 1 m is 1/1000 of the frame, a guess that still draws something.
+    const scale = den > 0 && num > 0 ? num / den : 1e-3;
+    return new Placement(scale, fx - scale * ux, fy - scale * uy);
+  }
+
+  toFrame([x, y]: XY): Pt {
+    return [this.scale * x + this.tx, -this.scale * y + this.ty];
+  }
+
+  fromFrame([fx, fy]: Pt): XY {
+    return [(fx - this.tx) / this.scale, -(fy - this.ty) / this.scale];
+  }
+}
+
+/** The mesh's rows and columns and the closed outline, as polylines in the frame. */
+function gridLines(cols: number, rows: number, nodes: XY[], outline: XY[], place: (p: XY) => Pt): Pt[][] {
+  if (nodes.length !== cols * rows) return [];
+  const node = (i: number, j: number) => place(nodes[j * cols + i]!);
+  const lines: Pt[][] = [];
+  for (let j = 0; j < rows; j++) lines.push(Array.from({ length: cols }, (_, i) => node(i, j)));
+  for (let i = 0; i < cols; i++) lines.push(Array.from({ length: rows }, (_, j) => node(i, j)));
+  if (outline.length > 2) lines.push([...outline, outline[0]!].map(place));
+  return lines;
+}
+
+/** The regular geographic mesh (and the outline) of a layout: what the warp starts from. */
+export function geoGrid(layout: LayoutResponse, placement: Placement): Pt[][] {
+  const place = (p: XY) => placement.toFrame(p);
+  return gridLines(layout.mesh.cols, layout.mesh.rows, layout.mesh.geo, layout.outline.geo, place);
+}
+
+/**
+ * The octilinear drawing: stations, edges and POIs where the layout puts them, in the order of
+ * the edges drawn (matched by their stations; an edge the layout lacks keeps its geographic
+ * track, mapped the same way), and the warped mesh.
+ */
+export function layoutGeometry(layout: LayoutResponse, placement: Placement, edges: readonly DrawnEdge[], geo: Geometry): Geometry {
+  const place = (p: XY) => placement.toFrame(p);
+  const byEnds = new Map<string, XY[][]>();
+  for (const edge of layout.edges.features) {
+    const key = `${edge.properties.from}\u0000${edge.properties.to}`;
+    byEnds.set(key, [...(byEnds.get(key) ?? []), edge.geometry.coordinates]);
+  }
+  // Parallel edges between the same stations are matched in order.
+  const take = (from: string, to: string): Pt[] | undefined => {
+    const forward = byEnds.get(`${from}\u0000${to}`);
+    if (forward?.length) return forward.shift()!.map(place);
+    const backward = byEnds.get(`${to}\u0000${from}`);
+    if (backward?.length) return backward.shift()!.map(place).reverse();
+    return undefined;
+  };
+  return {
+    stations: new Map(layout.stations.features.map((station) => [station.properties.id, place(station.geometry.coordinates)])),
+    pois: new Map(layout.pois.features.map((poi) => [poi.properties.id, place(poi.geometry.coordinates)])),
+    edges: edges.map((edge, i) => take(edge.from, edge.to) ?? geo.edges[i] ?? []),
+    grid: gridLines(layout.mesh.cols, layout.mesh.rows, layout.mesh.layout, layout.outline.layout, place),
+  };
+}

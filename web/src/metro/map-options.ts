@@ -1,0 +1,152 @@
+import type { LayoutLengths, LayoutSolverKind } from '../api/types';
+import { h } from '../ui/dom';
+
+export type MapMode = 'geographic' | 'octilinear';
+export type PoiMode = 'clusters' | 'all';
+
+export interface MapOptionsState {
+  mode: MapMode;
+  lengths: LayoutLengths;
+  solver: LayoutSolverKind;
+  heat: boolean;
+  grid: boolean;
+  pois: PoiMode;
+}
+
+export interface MapOptionsHandlers {
+  onMode(mode: MapMode): void;
+  onLayoutParams(): void;
+  onHeat(visible: boolean): void;
+  onGrid(visible: boolean): void;
+  onPoiMode(mode: PoiMode): void;
+}
+
+function segmented<T extends string>(
+  label: string,
+  testid: string,
+  choices: { value: T; text: string; title: string }[],
+  onPick: (value: T) => void,
+): { element: HTMLElement; set(value: T): void } {
+  const buttons = choices.map(({ value, text, title }) => {
+    const button = h('button', { type: 'button', class: 'segment', 'data-value': value, 'aria-pressed': 'false', title }, text);
+    button.addEventListener('click', () => onPick(value));
+    return button;
+  });
+  return {
+    element: h('div', { class: 'segmented', role: 'group', 'aria-label': label, 'data-testid': testid }, ...buttons),
+    set(value: T) {
+      for (const button of buttons) button.setAttribute('aria-pressed', String(button.dataset.value === value));
+    },
+  };
+}
+
+/**
+ * The Metro view's map switches in the toolbar: geographic or octilinear (with the layout's
+ * edge lengths and solver), the visual worth heat map, the warp mesh, and POIs as clusters or
+ * all of them.
+ */
+export class MapOptions {
+  readonly element: HTMLElement;
+  readonly state: MapOptionsState = { mode: 'geographic', lengths: 'visual-worth', solver: 'auto', heat: false, grid: false, pois: 'clusters' };
+  private readonly mode;
+  private readonly poiMode;
+  private readonly lengths: HTMLSelectElement;
+  private readonly solver: HTMLSelectElement;
+  private readonly heat: HTMLInputElement;
+  private readonly grid: HTMLInputElement;
+  private readonly poiGroup: HTMLElement;
+
+  constructor(handlers: MapOptionsHandlers) {
+    this.mode = segmented<MapMode>(
+      'Map',
+      'mode-switch',
+      [
+        { value: 'geographic', text: 'Geographic', title: 'Stations and tracks where they are' },
+        { value: 'octilinear', text: 'Octilinear', title: 'The transit-centric tourist map: an octilinear layout, POIs warped with it' },
+      ],
+      (mode) => {
+        if (mode === this.state.mode) return;
+        this.setMode(mode);
+        handlers.onMode(mode);
+      },
+    );
+    this.lengths = h(
+      'select',
+      { id: 'layout-lengths', 'data-testid': 'layout-lengths', title: 'Edge lengths of the octilinear layout' },
+      h('option', { value: 'visual-worth' }, 'visual worth'),
+      h('option', { value: 'uniform' }, 'uniform'),
+    );
+    this.solver = h(
+      'select',
+      { id: 'layout-solver', 'data-testid': 'layout-solver', title: 'Layout solver: auto polishes small networks with the MIP' },
+      h('option', { value: 'auto' }, 'auto'),
+      h('option', { value: 'fast' }, 'fast'),
+      h('option', { value: 'mip' }, 'MIP (slow)'),
+    );
+    const layoutChanged = () => {
+      this.state.lengths = this.lengths.value as LayoutLengths;
+      this.state.solver = this.solver.value as LayoutSolverKind;
+      handlers.onLayoutParams();
+    };
+    this.lengths.addEventListener('change', layoutChanged);
+    this.solver.addEventListener('change', layoutChanged);
+
+    this.heat = h('input', { type: 'checkbox', 'data-testid': 'heat-toggle' });
+    this.heat.addEventListener('change', () => {
+      this.state.heat = this.heat.checked;
+      handlers.onHeat(this.heat.checked);
+    });
+    this.grid = h('input', { type: 'checkbox', 'data-testid': 'grid-toggle' });
+    this.grid.addEventListener('change', () => {
+      this.state.grid = this.grid.checked;
+      handlers.onGrid(this.grid.checked);
+    });
+    this.poiMode = segmented<PoiMode>(
+      'Places of interest',
+      'poi-mode',
+      [
+        { value: 'clusters', text: 'Clusters', title: 'The most prominent clusters of places in view' },
+        { value: 'all', text: 'All', title: 'Every place of interest' },
+      ],
+      (mode) => {
+        this.state.pois = mode;
+        this.poiMode.set(mode);
+        handlers.onPoiMode(mode);
+      },
+    );
+    this.poiGroup = h('div', { class: 'option-inline' }, h('span', { class: 'field' }, 'Places'), this.poiMode.element);
+
+    this.element = h(
+      'div',
+      { class: 'map-options', 'data-testid': 'map-options' },
+      h('div', { class: 'option-inline' }, this.mode.element),
+      h('label', { class: 'option-inline', for: 'layout-lengths' }, h('span', { class: 'field' }, 'Lengths'), this.lengths),
+      h('label', { class: 'option-inline', for: 'layout-solver' }, h('span', { class: 'field' }, 'Solver'), this.solver),
+      h('label', { class: 'option-inline check-inline' }, this.heat, 'Heat map'),
+      h('label', { class: 'option-inline check-inline', title: 'The mesh that shows how the layout moved space around' }, this.grid, 'Warp grid'),
+      this.poiGroup,
+    );
+    this.setMode('geographic');
+    this.poiMode.set(this.state.pois);
+  }
+
+  /** Shows a mode without asking for it (a failed layout falls back to geographic). */
+  setMode(mode: MapMode): void {
+    this.state.mode = mode;
+    this.mode.set(mode);
+    this.element.dataset.mode = mode;
+  }
+
+  /** Shows the parameters of the layout drawn (after asking for another one failed). */
+  setLayoutParams(lengths: LayoutLengths, solver: LayoutSolverKind): void {
+    this.state.lengths = lengths;
+    this.state.solver = solver;
+    this.lengths.value = lengths;
+    this.solver.value = solver;
+  }
+
+  /** The places switch only matters for a city with POIs. */
+  setHasPois(has: boolean): void {
+    this.poiGroup.hidden = !has;
+  }
+}
