@@ -204,7 +204,9 @@ Response MetroService::clusters(const Request& req) {
                     &layout->poi_outside);
   }
 
-  auto active = poi::active_clusters(*tree, lo, hi, m);
+  // At least 2M active clusters where the tree allows, so a whole-map window fills the top M
+  // and the M previews (see poi/active_clusters.hpp).
+  auto active = poi::active_clusters(*tree, lo, hi, m, 2 * m);
   auto describe = [&](std::uint32_t node, double prominence) {
     const auto& c = tree->nodes[node];
     const auto& rep = pois[c.representative];
@@ -213,7 +215,12 @@ Response MetroService::clusters(const Request& req) {
     nlohmann::json representative = {{"id", rep.id}, {"name", rep.name}, {"category", rep.category}};
     if (!rep.image_url.empty()) representative["image"] = rep.image_url;
     if (!rep.url.empty()) representative["url"] = rep.url;
-    representative["position"] = space == "geo" ? position(rep.pos) : nlohmann::json::array({c.center.x, c.center.y});
+    if (!rep.wikipedia.empty()) representative["wikipedia"] = rep.wikipedia;
+    // Leaves are the POIs in input order, so the representative's leaf holds its position in
+    // the tree's space (its warped position for space=layout).
+    const geo::XY at = tree->nodes[c.representative].center;
+    representative["position"] = space == "geo" ? position(rep.pos)
+                                                : nlohmann::json::array({std::round(at.x * 10) / 10, std::round(at.y * 10) / 10});
     return nlohmann::json{{"id", std::string("c").append(std::to_string(node))},
                           {"center", std::move(center)},
                           {"size", c.size},

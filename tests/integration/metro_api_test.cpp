@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
+#include <string>
 
 namespace tourmap::test {
 namespace {
@@ -88,8 +90,10 @@ TEST_F(MetroApi, VisualWorthRaster) {
 TEST_F(MetroApi, ClustersRespectTheWindowAndChangeWithIt) {
   auto all = live->get_json("/api/v1/cities/vienna/clusters?m=5");
   EXPECT_EQ(all["space"], "geo");
-  EXPECT_LE(all["clusters"].size(), 5u);
-  EXPECT_GT(all["clusters"].size(), 0u);
+  // The whole extent is refined to 2m active clusters: m shown and m previews.
+  EXPECT_EQ(all["clusters"].size(), 5u);
+  EXPECT_EQ(all["previews"].size(), 5u);
+  EXPECT_GE(all["active"].get<int>(), 10);
   double sum = 0;
   for (const auto& c : all["clusters"]) {
     sum += c["prominence"].get<double>();
@@ -116,7 +120,18 @@ TEST_F(MetroApi, ClustersRespectTheWindowAndChangeWithIt) {
   auto in_layout = live->get_json("/api/v1/cities/vienna/clusters?space=layout&bbox=" + std::to_string(x0 - 1) + "," +
                                   std::to_string(y0 - 1) + "," + std::to_string(x1 + 1) + "," + std::to_string(y1 + 1));
   EXPECT_EQ(in_layout["space"], "layout");
-  EXPECT_GT(in_layout["clusters"].size(), 0u);
+  EXPECT_EQ(in_layout["clusters"].size(), 10u);
+  // A representative stands where the layout put its POI (rounded to 0.1 m).
+  std::map<std::string, std::pair<double, double>> poi_at;
+  for (const auto& p : layout["pois"]["features"])
+    poi_at[p["properties"]["id"].get<std::string>()] = {p["geometry"]["coordinates"][0], p["geometry"]["coordinates"][1]};
+  for (const auto& c : in_layout["clusters"]) {
+    const auto& rep = c["representative"];
+    ASSERT_TRUE(poi_at.count(rep["id"].get<std::string>())) << rep;
+    auto [x, y] = poi_at[rep["id"].get<std::string>()];
+    EXPECT_NEAR(rep["position"][0].get<double>(), x, 0.1) << rep;
+    EXPECT_NEAR(rep["position"][1].get<double>(), y, 0.1) << rep;
+  }
 }
 
 TEST_F(MetroApi, BadInputNamesTheField) {

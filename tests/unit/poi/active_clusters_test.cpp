@@ -131,4 +131,34 @@ TEST(PoiActiveClusters, EmptyAndDegenerate) {
 }
 
 }  // namespace
+TEST(PoiActiveClusters, RefinesAWholeMapWindowToAtLeastTheRequestedCount) {
+  auto points = clustered_points(1000, 5);
+  auto t = build_cluster_tree(points);
+  const double big = 1e7;
+  auto paper = active_clusters(t, {-big, -big}, {big, big}, 10);
+  ASSERT_EQ(paper.active, 1u);
+  auto refined = active_clusters(t, {-big, -big}, {big, big}, 10, 20);
+  EXPECT_GE(refined.active, 20u);
+  EXPECT_EQ(refined.top.size(), 10u);
+  EXPECT_EQ(refined.previews.size(), 10u);
+  // The most worthy POI stays on top.
+  EXPECT_EQ(t.nodes[refined.top[0]].worth, t.nodes[t.root].worth);
+  double sum = 0;
+  for (double p : refined.prominence) sum += p;
+  EXPECT_LE(sum, 1.0 + 1e-9);
+  // A tree smaller than the requested count ends at single POIs.
+  auto pair = build_cluster_tree({{{5, 5}, 1.0}, {{6, 5}, 2.0}});
+  auto both = active_clusters(pair, {0, 0}, {10, 10}, 10, 20);
+  EXPECT_EQ(both.active, 2u);
+  EXPECT_EQ(both.top, (std::vector<std::uint32_t>{1, 0}));
+  // A window's refined set covers exactly the POIs of the paper's set.
+  auto window_paper = active_clusters(t, {-big, -big}, {big, big}, 1000);
+  auto window_refined = active_clusters(t, {-big, -big}, {big, big}, 1000, 50);
+  std::uint32_t covered_paper = 0, covered_refined = 0;
+  for (auto id : window_paper.top) covered_paper += t.nodes[id].size;
+  for (auto id : window_refined.top) covered_refined += t.nodes[id].size;
+  EXPECT_EQ(covered_paper, covered_refined);
+  EXPECT_EQ(covered_refined, 1000u);
+}
+
 }  // namespace tourmap::poi

@@ -341,6 +341,7 @@ export interface ClusterRepresentative {
   category: string;
   image?: string;
   url?: string;
+  wikipedia?: string;
   /** lon/lat (space=geo) or [x, y] in the layout frame (space=layout) */
   position: [number, number];
 }
