@@ -80,6 +80,7 @@ std::pair<double, geo::XY> fit_scale_translation(const std::vector<geo::XY>& fro
 nlohmann::json quality_json(const metro::LayoutQuality& q) {
   return {{"octilinear_share", q.octilinear_share}, {"bends", q.bends},
           {"crossings", q.crossings},               {"geo_crossings", q.geo_crossings},
+          {"added_crossings", q.added_crossings},
           {"order_violations", q.order_violations}, {"min_edge", q.min_edge},
           {"mean_edge", q.mean_edge},               {"mean_displacement", q.mean_displacement}};
 }
@@ -169,7 +170,8 @@ std::shared_ptr<const CityLayout> compute_city_layout(const CityMetroData& d, co
   auto g = d.graph;
   g.min_length = req.worth_lengths ? metro::visual_worth_lengths(g, node_worth, req.l_const)
                                    : std::vector<double>(g.edges.size(), req.l_const);
-  auto start = metro::stress_layout(g, metro::stretch_to_lengths(g));
+  auto start = metro::stress_layout(g, metro::scale_to_lengths(g));
+  const double prelayout_ms = ms_since(t);
   metro::GridRouteParams params;
   params.time_limit_ms = req.time_limit_s * 1000.0;
   metro::GridRouteReport report;
@@ -205,6 +207,7 @@ std::shared_ptr<const CityLayout> compute_city_layout(const CityMetroData& d, co
         info["gap"] = r.gap;
         bool better = r.objective < model.start_objective - 1e-6;
         bool no_worse = q.octilinear_share >= result->quality.octilinear_share && q.crossings <= result->quality.crossings &&
+                        q.added_crossings <= result->quality.added_crossings &&
                         q.order_violations <= result->quality.order_violations;
         if (better && no_worse) {
           polished.status = r.status;
@@ -361,10 +364,12 @@ std::shared_ptr<const CityLayout> compute_city_layout(const CityMetroData& d, co
       {"solver", std::move(solver)},
       {"fast_path", {{"status", report.timed_out ? "time_limit" : report.failed ? "incomplete" : report.overlapping ? "overlapping" : "ok"},
                      {"time_ms", fast_ms},
+                     {"prelayout_ms", prelayout_ms},
                      {"chains", report.chains},
                      {"contracted_nodes", report.contracted_nodes},
                      {"ripups", report.ripups},
                      {"overlapping", report.overlapping},
+                     {"crossing_routes", report.crossing_routes},
                      {"failed", report.failed},
                      {"attempt", report.attempt}}},
       {"timing_ms", {{"visual_worth", vw_ms}, {"layout", layout_ms}, {"warp", warp_ms}, {"total", ms_since(started)}}},

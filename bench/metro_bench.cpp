@@ -7,7 +7,7 @@
 //   3. active cluster queries per city: p50/p99 over random windows (in process).
 // The MIP runs in process here (the server runs it in a child process it can kill).
 //
-//   build/bench/metro_bench [--data-dir DIR]
+//   build/bench/metro_bench [--data-dir DIR] [--city ID]   (--city: that city's layouts only)
 
 #include "api/catalog.hpp"
 #include "api/metro_service.hpp"
@@ -61,12 +61,13 @@ void row(const std::string& city, const nlohmann::json& l, double wall, double c
                                      : mip["status"].get<std::string>() +
                                            (mip.contains("accepted") ? (mip["accepted"].get<bool>() ? ", kept" : ", not kept") : "") +
                                            (mip.contains("gap") ? ", gap " + std::to_string(mip["gap"].get<double>()).substr(0, 5) : "");
-  std::printf("| %s | %zu | %zu | %zu | %.1f | %.1f | %s | %.1f | %.1f | %.1f | %s | %.0f%% | %d (%d) | %d | %d | %.1f / %.1f |\n",
+  std::printf("| %s | %zu | %zu | %zu | %.1f | %.1f (%.0f) | %s | %.1f | %.1f | %.1f | %s | %.0f%% | %d (%d, %d) | %d | %d | %.1f / %.1f |\n",
               city.c_str(), l["stations"]["features"].size(), l["edges"]["features"].size(), l["pois"]["features"].size(),
-              l["timing_ms"]["visual_worth"].get<double>(), l["fast_path"]["time_ms"].get<double>(), mip_text.c_str(),
+              l["timing_ms"]["visual_worth"].get<double>(), l["fast_path"]["time_ms"].get<double>(),
+              l["fast_path"]["prelayout_ms"].get<double>(), mip_text.c_str(),
               mip.contains("time_ms") ? mip["time_ms"].get<double>() : 0.0, l["timing_ms"]["warp"].get<double>(), cluster_ms,
               (s["kind"].get<std::string>() + " " + s["status"].get<std::string>()).c_str(),
-              100 * q["octilinear_share"].get<double>(), q["crossings"].get<int>(), q["geo_crossings"].get<int>(),
+              100 * q["octilinear_share"].get<double>(), q["crossings"].get<int>(), q["geo_crossings"].get<int>(), q["added_crossings"].get<int>(),
               q["order_violations"].get<int>(), q["bends"].get<int>(), q["min_edge"].get<double>(), q["mean_edge"].get<double>());
   (void)wall;
 }
@@ -76,8 +77,11 @@ void row(const std::string& city, const nlohmann::json& l, double wall, double c
 int main(int argc, char** argv) {
   std::string data_dir = TOURMAP_DEFAULT_DATA_DIR;
   if (const char* env = std::getenv("TOURMAP_DATA_DIR")) data_dir = env;
-  for (int i = 1; i + 1 < argc; ++i)
+  std::string only_city;
+  for (int i = 1; i + 1 < argc; ++i) {
     if (std::string(argv[i]) == "--data-dir") data_dir = argv[i + 1];
+    if (std::string(argv[i]) == "--city") only_city = argv[i + 1];
+  }
 
   auto dir = std::filesystem::temp_directory_path() / ("tourmap-metro-bench-" + std::to_string(getpid()));
   std::filesystem::create_directories(dir);
@@ -103,9 +107,10 @@ int main(int argc, char** argv) {
     purge();
     api::MetroService metro(catalog);  // fresh caches
     std::printf("\n### Layout per city: %s\n\n", query.c_str());
-    std::printf("| city | stations | edges | POIs | visual worth | fast layout | MIP | MIP ms | warp | cluster tree | result | octilinear | crossings (geo) | order violations | bends | min / mean edge |\n");
+    std::printf("| city | stations | edges | POIs | visual worth | fast layout (pre-layout) | MIP | MIP ms | warp | cluster tree | result | octilinear | crossings (geo, added) | order violations | bends | min / mean edge |\n");
     std::printf("|---|---:|---:|---:|---:|---:|---|---:|---:|---:|---|---:|---:|---:|---:|---:|\n");
     for (const auto& m : manifest.metros) {
+      if (!only_city.empty() && m.city.id != only_city) continue;
       double wall = 0;
       auto l = layout(metro, m.city.id, query, &wall);
       // The layout-space cluster tree: built on the first clusters request.
@@ -125,8 +130,12 @@ int main(int argc, char** argv) {
     }
   }
 
+  if (!only_city.empty() && only_city != "london") {
+    std::filesystem::remove_all(dir);
+    return 0;
+  }
   std::printf("\n### The largest network: London (302 stations) by solver\n\n");
-  std::printf("| solver | total ms | result | MIP | octilinear | crossings (geo) | order violations | bends | fast path ripups / overlapping |\n");
+  std::printf("| solver | total ms | result | MIP | octilinear | crossings (geo, added) | order violations | bends | fast path ripups / crossing routes / overlapping / attempt |\n");
   std::printf("|---|---:|---|---|---:|---:|---:|---:|---:|\n");
   for (std::string solver : {"fast", "auto", "mip"}) {
     purge();
@@ -137,13 +146,18 @@ int main(int argc, char** argv) {
     std::string mip = l["solver"].contains("mip") ? l["solver"]["mip"].value("status", "") + " " +
                                                         l["solver"]["mip"].value("reason", "")
                                                   : "-";
-    std::printf("| %s | %.0f | %s %s | %s | %.0f%% | %d (%d) | %d | %d | %d / %d |\n", solver.c_str(), wall,
+    std::printf("| %s | %.0f | %s %s | %s | %.0f%% | %d (%d, %d) | %d | %d | %d / %d / %d / %d |\n", solver.c_str(), wall,
                 l["solver"]["kind"].get<std::string>().c_str(), l["solver"]["status"].get<std::string>().c_str(), mip.c_str(),
-                100 * q["octilinear_share"].get<double>(), q["crossings"].get<int>(), q["geo_crossings"].get<int>(),
+                100 * q["octilinear_share"].get<double>(), q["crossings"].get<int>(), q["geo_crossings"].get<int>(), q["added_crossings"].get<int>(),
                 q["order_violations"].get<int>(), q["bends"].get<int>(), l["fast_path"]["ripups"].get<int>(),
-                l["fast_path"]["overlapping"].get<int>());
+                l["fast_path"]["crossing_routes"].get<int>(), l["fast_path"]["overlapping"].get<int>(),
+                l["fast_path"]["attempt"].get<int>());
   }
 
+  if (!only_city.empty()) {
+    std::filesystem::remove_all(dir);
+    return 0;
+  }
   std::printf("\n### Active cluster queries (geo space, in process, 2000 random windows per city)\n\n");
   std::printf("| city | POIs | tree build ms | p50 ms | p99 ms | max ms |\n|---|---:|---:|---:|---:|---:|\n");
   purge();

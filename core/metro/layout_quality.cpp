@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <map>
 #include <set>
 
@@ -40,8 +41,8 @@ bool same_cycle(const std::vector<std::uint32_t>& a, const std::vector<std::uint
 
 }  // namespace
 
-std::size_t count_path_crossings(const std::vector<std::vector<XY>>& paths,
-                                 const std::vector<std::pair<std::uint32_t, std::uint32_t>>& edges) {
+std::vector<std::pair<std::size_t, std::size_t>> crossing_path_pairs(
+    const std::vector<std::vector<XY>>& paths, const std::vector<std::pair<std::uint32_t, std::uint32_t>>& edges) {
   struct Segment {
     std::size_t edge;
     XY a, b;
@@ -63,22 +64,41 @@ std::size_t count_path_crossings(const std::vector<std::vector<XY>>& paths,
     if (s.edge == t.edge) return;
     auto key = std::minmax(s.edge, t.edge);
     if (crossing.count(key)) return;
-    Kernel::Segment_2 ks({s.a.x, s.a.y}, {s.b.x, s.b.y}), kt({t.a.x, t.a.y}, {t.b.x, t.b.y});
-    auto hit = CGAL::intersection(ks, kt);
-    if (!hit) return;
-    // Edges that share a node may touch there, and only there.
+    // Edges that share a node meet there: their segments at that node cross only by
+    // overlapping (collinear, same side). Decided by exact predicates, as the computed
+    // meeting point of nearly collinear segments can be far off.
     auto [e0, e1] = edges[s.edge];
     auto [f0, f1] = edges[t.edge];
     if (e0 == f0 || e0 == f1 || e1 == f0 || e1 == f1) {
-      if (const auto* p = boost::get<Kernel::Point_2>(&*hit)) {
-        for (auto node_end : {paths[s.edge].front(), paths[s.edge].back()})
-          if (std::abs(p->x() - node_end.x) < 1e-9 && std::abs(p->y() - node_end.y) < 1e-9) return;
+      const auto& ps = paths[s.edge];
+      const auto& pt = paths[t.edge];
+      auto same = [](XY a, XY b) {  // equal up to rounding
+        const double tolerance = 1e-9 * std::max({1.0, std::abs(a.x), std::abs(a.y)});
+        return std::abs(a.x - b.x) <= tolerance && std::abs(a.y - b.y) <= tolerance;
+      };
+      for (XY shared : {ps.front(), ps.back()}) {
+        if (!same(shared, pt.front()) && !same(shared, pt.back())) continue;
+        const XY* a = same(s.a, shared) ? &s.b : same(s.b, shared) ? &s.a : nullptr;
+        const XY* b = same(t.a, shared) ? &t.b : same(t.b, shared) ? &t.a : nullptr;
+        if (!a || !b) continue;  // not both segments at the shared node
+        const bool overlap = CGAL::orientation(Kernel::Point_2(shared.x, shared.y), Kernel::Point_2(a->x, a->y),
+                                               Kernel::Point_2(b->x, b->y)) == CGAL::COLLINEAR &&
+                             (a->x - shared.x) * (b->x - shared.x) + (a->y - shared.y) * (b->y - shared.y) > 0;
+        if (overlap) crossing.insert(key);
+        return;
       }
     }
+    if (!CGAL::do_intersect(Kernel::Segment_2({s.a.x, s.a.y}, {s.b.x, s.b.y}), Kernel::Segment_2({t.a.x, t.a.y}, {t.b.x, t.b.y})))
+      return;
     crossing.insert(key);
   };
   CGAL::box_self_intersection_d(boxes.begin(), boxes.end(), check);
-  return crossing.size();
+  return {crossing.begin(), crossing.end()};
+}
+
+std::size_t count_path_crossings(const std::vector<std::vector<XY>>& paths,
+                                 const std::vector<std::pair<std::uint32_t, std::uint32_t>>& edges) {
+  return crossing_path_pairs(paths, edges).size();
 }
 
 LayoutQuality measure_layout(const LayoutGraph& g, const Layout& L) {
@@ -136,10 +156,15 @@ LayoutQuality measure_layout(const LayoutGraph& g, const Layout& L) {
     if (!distinct || !same_cycle(geo, lay)) ++q.order_violations;
   }
 
-  q.crossings = count_path_crossings(L.paths, g.edges);
+  auto crossing = crossing_path_pairs(L.paths, g.edges);
   std::vector<std::vector<XY>> straight;
   for (auto [u, v] : g.edges) straight.push_back({g.pos[u], g.pos[v]});
-  q.geo_crossings = count_path_crossings(straight, g.edges);
+  auto geo_crossing = crossing_path_pairs(straight, g.edges);  // both sorted
+  q.crossings = crossing.size();
+  q.geo_crossings = geo_crossing.size();
+  std::vector<std::pair<std::size_t, std::size_t>> added;
+  std::set_difference(crossing.begin(), crossing.end(), geo_crossing.begin(), geo_crossing.end(), std::back_inserter(added));
+  q.added_crossings = added.size();
 
   auto h = fit_helmert(g.pos, L.pos);
   double sum = 0;

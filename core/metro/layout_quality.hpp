@@ -10,6 +10,7 @@ struct LayoutQuality {
   std::size_t bends = 0;             // direction changes inside edges and along lines at stations
   std::size_t crossings = 0;         // pairs of edges that cross in the layout
   std::size_t geo_crossings = 0;     // pairs of edges that cross geographically (straight lines)
+  std::size_t added_crossings = 0;   // pairs that cross in the layout but not geographically
   std::size_t order_violations = 0;  // stations whose circular order of edges changed
   double min_edge = 0, mean_edge = 0;  // path lengths, layout units
   double mean_displacement = 0;      // mean station offset from the Helmert-aligned geography,
@@ -18,7 +19,10 @@ struct LayoutQuality {
 
 LayoutQuality measure_layout(const LayoutGraph& g, const Layout& layout);
 
-// Pairs of polylines (one per edge) that intersect anywhere but at a shared end node.
+// Pairs of polylines (one per edge) that intersect anywhere but at a shared end node: the
+// pairs (i < j, sorted), and their count.
+std::vector<std::pair<std::size_t, std::size_t>> crossing_path_pairs(
+    const std::vector<std::vector<XY>>& paths, const std::vector<std::pair<std::uint32_t, std::uint32_t>>& edges);
 std::size_t count_path_crossings(const std::vector<std::vector<XY>>& paths,
                                  const std::vector<std::pair<std::uint32_t, std::uint32_t>>& edges);
 

@@ -1,12 +1,16 @@
 #include "metro/octilinear_grid.hpp"
 
+#include "metro/layout_quality.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
 #include <numeric>
 #include <deque>
+#include <iterator>
 #include <queue>
+#include <tuple>
 
 namespace tourmap::metro {
 namespace {
@@ -39,6 +43,7 @@ std::vector<std::uint32_t> sorted_lines(std::vector<std::uint32_t> l) {
   return l;
 }
 
+// `anchor` comes in with the nodes that must stay chain ends and goes out with all of them.
 std::vector<Chain> contract(const LayoutGraph& g, std::vector<bool>& anchor) {
   std::size_t n = g.pos.size();
   std::vector<std::vector<std::uint32_t>> incident(n);
@@ -47,10 +52,10 @@ std::vector<Chain> contract(const LayoutGraph& g, std::vector<bool>& anchor) {
     incident[g.edges[e].second].push_back(e);
   }
   auto other = [&](std::uint32_t e, std::uint32_t v) { return g.edges[e].first == v ? g.edges[e].second : g.edges[e].first; };
-  anchor.assign(n, false);
+  anchor.resize(n, false);
   for (std::uint32_t v = 0; v < n; ++v) {
     const auto& inc = incident[v];
-    anchor[v] = inc.size() != 2 || sorted_lines(g.edge_lines[inc[0]]) != sorted_lines(g.edge_lines[inc[1]]) ||
+    anchor[v] = anchor[v] || inc.size() != 2 || sorted_lines(g.edge_lines[inc[0]]) != sorted_lines(g.edge_lines[inc[1]]) ||
                 other(inc[0], v) == other(inc[1], v);
   }
   std::vector<bool> done(g.edges.size(), false);
@@ -113,35 +118,64 @@ struct GridGraph {
   int w = 0, h = 0;
   XY origin;
   double cell = 1;
-  std::vector<std::uint8_t> used;      // 0 free, 1 path, 2 station
+  std::vector<std::uint8_t> used;      // 0 free, 1 path, 2 station, 3 two paths crossing
   std::vector<std::uint8_t> diagonal;  // bit d: the diagonal move in direction d from here is taken
   std::vector<int> reserved_for;       // the station next to this node (its ports need the room), or -1
   std::vector<int> owner;              // the chain whose path runs through this node, or -1
+  std::vector<std::int8_t> axis;       // direction % 4 of that path when it goes straight through, else -1
+  std::vector<int> owner2;             // at a crossing: the second path...
+  std::vector<std::int8_t> axis2;      // ...and its axis
+  std::vector<int> diagonal_owner;     // 2 per node: the chain on the NE and the NW diagonal from it
+
+  void resize(std::size_t nodes) {
+    used.assign(nodes, 0);
+    diagonal.assign(nodes, 0);
+    reserved_for.assign(nodes, -1);
+    owner.assign(nodes, -1);
+    axis.assign(nodes, -1);
+    owner2.assign(nodes, -1);
+    axis2.assign(nodes, -1);
+    diagonal_owner.assign(2 * nodes, -1);
+  }
 
   int at(int x, int y) const { return y * w + x; }
   XY point(int node) const { return {origin.x + (node % w) * cell, origin.y + (node / w) * cell}; }
   bool inside(int x, int y) const { return x >= 0 && y >= 0 && x < w && y < h; }
-  // The diagonal from `node` in direction d crosses the other diagonal of the same cell.
-  bool crossing_taken(int node, int d) const {
-    if (d % 2 == 0) return false;
+  // Where the owner of the diagonal from `node` in direction d (odd) is kept: NE and NW
+  // diagonals at their lower end, SW and SE ones as the NE / NW diagonal they reverse.
+  std::size_t diagonal_slot(int node, int d) const {
+    int x = node % w, y = node / w;
+    if (d == 1) return 2 * static_cast<std::size_t>(node);
+    if (d == 3) return 2 * static_cast<std::size_t>(node) + 1;
+    if (d == 5) return 2 * static_cast<std::size_t>(at(x - 1, y - 1));
+    return 2 * static_cast<std::size_t>(at(x + 1, y - 1)) + 1;
+  }
+  // The diagonal from `node` in direction d crosses the other diagonal of the same cell: the
+  // chain on that one, or -1 when it is free.
+  int crossing_diagonal(int node, int d) const {
+    if (d % 2 == 0) return -1;
     int x = node % w, y = node / w;
     // Cell corners: the crossing diagonal starts at (x + dx, y) going (-dx, dy).
     int cx = x + kDx[d], cy = y;
-    if (!inside(cx, cy)) return false;
+    if (!inside(cx, cy)) return -1;
     int cross = (d == 1) ? 3 : (d == 3) ? 1 : (d == 5) ? 7 : 5;
-    return (diagonal[at(cx, cy)] >> cross) & 1;
+    if (!((diagonal[at(cx, cy)] >> cross) & 1)) return -1;
+    return diagonal_owner[diagonal_slot(at(cx, cy), cross)];
   }
-  void take_diagonal(int node, int d) {
+  bool crossing_taken(int node, int d) const { return crossing_diagonal(node, d) >= 0; }
+  void take_diagonal(int node, int d, int chain) {
     if (d % 2 == 0) return;
     int x = node % w, y = node / w;
     diagonal[node] |= 1 << d;
     diagonal[at(x + kDx[d], y + kDy[d])] |= 1 << ((d + 4) % 8);
+    diagonal_owner[diagonal_slot(node, d)] = chain;
   }
   void release_diagonal(int node, int d) {
     if (d % 2 == 0) return;
     int x = node % w, y = node / w;
     diagonal[node] &= static_cast<std::uint8_t>(~(1 << d));
     diagonal[at(x + kDx[d], y + kDy[d])] &= static_cast<std::uint8_t>(~(1 << ((d + 4) % 8)));
+    diagonal_owner[diagonal_slot(node, d)] = -1;
   }
 };
 
@@ -154,6 +188,22 @@ struct Endpoint {
   XY centre;      // in cells
   double radius;  // in cells, for the heuristic
 };
+
+// A search over (node, direction) states may pass a grid node twice (a small loop can cost
+// less than a sharp turn), and the path would cross itself: the loop is cut out. A cut
+// cannot leave a reversal: that would need the node before the loop twice, also cut.
+std::vector<int> without_loops(const std::vector<int>& path) {
+  std::vector<int> out;
+  for (int node : path) {
+    auto again = std::find(out.begin(), out.end(), node);
+    if (again != out.end()) {
+      out.erase(again + 1, out.end());
+      continue;
+    }
+    out.push_back(node);
+  }
+  return out;
+}
 
 class Router {
  public:
@@ -168,7 +218,6 @@ class Router {
   // Cheapest path from `src` to `dst`; empty when there is none. Grid node sequence.
   std::vector<int> route(const Endpoint& src, const Endpoint& dst) {
     ++now_;
-    blockers_.clear();
     corridor_a_ = {static_cast<double>(src.nodes.front().first % grid_.w), static_cast<double>(src.nodes.front().first / grid_.w)};
     corridor_b_ = dst.centre;
     corridor_slack_ = std::max(p_.corridor_slack,
@@ -216,7 +265,13 @@ class Router {
       double c = cost_[s];
       if (stamp_[s] != now_ || f - h(node) > c + 1e-9) continue;  // stale
       int x = node % grid_.w, y = node / grid_.w;
+      // Crossing another path here: straight on only. (Negotiating, the search may also
+      // have come through to tear that path up: then it may turn.)
+      const bool crossing_here = !overlap_ && din != kNoDir && grid_.used[node] != 0 &&
+                                 (!negotiate_ || (grid_.used[node] == 1 && grid_.axis[node] >= 0 &&
+                                                  grid_.axis[node] != din % 4 && crossing_price(grid_.owner[node]) < kInf));
       for (int d = 0; d < 8; ++d) {
+        if (crossing_here && d != din) continue;
         double step = c;
         if (din == kNoDir) {
           if (!src.allowed[d]) continue;
@@ -229,9 +284,14 @@ class Router {
         int nx = x + kDx[d], ny = y + kDy[d];
         if (!grid_.inside(nx, ny)) continue;
         int next = grid_.at(nx, ny);
-        if (grid_.crossing_taken(node, d)) {
-          if (!overlap_) continue;
-          step += p_.overlap_cost;
+        if (int other = grid_.crossing_diagonal(node, d); other >= 0) {
+          double price = crossing_price(other);
+          if (price == kInf) {
+            if (negotiate_) price = eviction_price(node);
+            else if (overlap_) price = p_.overlap_cost;
+            else continue;
+          }
+          step += price;
         }
         step += (d % 2) ? std::sqrt(2.0) : 1.0;
         double tc = target_cost_[next];
@@ -246,9 +306,17 @@ class Router {
           }
         }
         if (grid_.used[next] != 0) {
-          if (grid_.used[next] == 1 && grid_.owner[next] >= 0) blockers_.push_back(grid_.owner[next]);
-          if (!overlap_ || grid_.used[next] == 2) continue;
-          step += p_.overlap_cost;
+          // A path going straight through `next` on another axis may be crossed there.
+          double price = grid_.used[next] == 1 && grid_.axis[next] >= 0 && grid_.axis[next] != d % 4
+                             ? crossing_price(grid_.owner[next])
+                             : kInf;
+          if (price == kInf) {
+            if (grid_.used[next] == 2) continue;  // a station
+            if (negotiate_) price = eviction_price(next) * (grid_.used[next] == 3 ? 2 : 1);
+            else if (overlap_) price = p_.overlap_cost;
+            else continue;
+          }
+          step += price;
         }
         int owner = grid_.reserved_for[next];
         if (owner >= 0 && owner != src.station && owner != dst.station) step += p_.reserved_penalty;
@@ -276,24 +344,27 @@ class Router {
         parent = arrival.parent;
       }
     goal_parents_.clear();
-    blockers_.clear();
     path.push_back(static_cast<int>(found / 9));
     for (long s = parent; s >= 0; s = parent_[s]) path.push_back(static_cast<int>(s / 9));
     std::reverse(path.begin(), path.end());
-    return path;
+    return without_loops(path);
   }
 
  // Last resort for a walled-in chain: pass through other paths at a high cost, so the edge
  // stays octilinear (the crossing is reported by the quality check).
  void allow_overlap(bool on) { overlap_ = on; }
 
- // Chains whose paths walled in the last failed search.
-  std::vector<int> blockers() const {
-    auto b = blockers_;
-    std::sort(b.begin(), b.end());
-    b.erase(std::unique(b.begin(), b.end()), b.end());
-    return b;
-  }
+ // The chains the next search may cross (one flag per chain), at `crossing_cost`; with
+ // `any`, every other chain too, at `added_crossing_cost`.
+ void allow_crossing(const std::vector<char>* chains, bool any) {
+   crossable_ = chains;
+   cross_any_ = any;
+ }
+
+ // Negotiation: the search may go through other chains' paths (not stations) at
+ // evict_cost * (1 + history of the grid node).
+ void set_negotiation(bool on) { negotiate_ = on; }
+ void set_history(const std::vector<float>* history) { history_ = history; }
 
  private:
   static double distance_to_segment(double x, double y, XY a, XY b) {
@@ -302,12 +373,26 @@ class Router {
     return std::hypot(x - (a.x + t * dx), y - (a.y + t * dy));
   }
 
+  double eviction_price(int node) const {
+    return p_.evict_cost * (1.0 + (history_ ? (*history_)[static_cast<std::size_t>(node)] : 0.0));
+  }
+
+  // The cost of crossing the path of chain `other`, or infinity when that is not allowed.
+  double crossing_price(int other) const {
+    if (other < 0) return kInf;
+    if (crossable_ && (*crossable_)[static_cast<std::size_t>(other)]) return p_.crossing_cost;
+    return cross_any_ ? p_.added_crossing_cost : kInf;
+  }
+
   GridGraph& grid_;
   const GridRouteParams& p_;
+  const std::vector<char>* crossable_ = nullptr;
+  bool cross_any_ = false;
   XY corridor_a_, corridor_b_;
   double corridor_slack_ = 0;
   bool overlap_ = false;
-  std::vector<int> blockers_;
+  bool negotiate_ = false;
+  const std::vector<float>* history_ = nullptr;
   std::vector<double> cost_;
   std::vector<long> parent_;
   std::vector<std::uint32_t> stamp_;
@@ -360,8 +445,10 @@ int direction_between(const GridGraph& g, int a, int b) {
   return -1;
 }
 
-// Point at arc-length fraction t along a polyline.
+// Point at arc-length fraction t along a polyline (its ends exactly at t = 0 and 1).
 XY point_along(const std::vector<XY>& line, double t) {
+  if (t <= 0) return line.front();
+  if (t >= 1) return line.back();
   double total = 0;
   for (std::size_t i = 1; i < line.size(); ++i) total += std::hypot(line[i].x - line[i - 1].x, line[i].y - line[i - 1].y);
   double want = t * total, run = 0;
@@ -410,7 +497,8 @@ std::vector<XY> simplify_collinear(const std::vector<XY>& line) {
 struct Attempt {
   Layout layout;
   std::size_t ripups = 0;
-  std::size_t overlapping = 0;  // chains routed through other paths
+  std::size_t overlapping = 0;      // chains routed through other paths
+  std::size_t crossing_routes = 0;  // chains that cross paths they do not cross geographically
   std::size_t failed = 0;  // edges
   std::vector<int> failed_chains;
   std::size_t grid_nodes = 0;
@@ -418,8 +506,9 @@ struct Attempt {
 };
 
 Attempt attempt_routing(const LayoutGraph& g, const std::vector<XY>& start, const std::vector<Chain>& chains,
-                        const std::vector<bool>& anchor, const GridRouteParams& p, double cell,
-                        const std::vector<int>& first, Clock::time_point deadline) {
+                        const std::vector<bool>& anchor, const std::vector<std::vector<char>>& geo_crossing,
+                        const GridRouteParams& p, double cell, const std::vector<int>& first,
+                        Clock::time_point deadline) {
   Attempt result;
   std::size_t n = g.pos.size();
   // Grid over the stretched positions with room around them.
@@ -437,10 +526,7 @@ Attempt attempt_routing(const LayoutGraph& g, const std::vector<XY>& start, cons
   grid.origin = {x0 - margin * cell, y0 - margin * cell};
   grid.w = static_cast<int>(std::ceil((x1 - x0) / cell)) + 2 * margin + 1;
   grid.h = static_cast<int>(std::ceil((y1 - y0) / cell)) + 2 * margin + 1;
-  grid.used.assign(static_cast<std::size_t>(grid.w) * grid.h, 0);
-  grid.diagonal.assign(grid.used.size(), 0);
-  grid.reserved_for.assign(grid.used.size(), -1);
-  grid.owner.assign(grid.used.size(), -1);
+  grid.resize(static_cast<std::size_t>(grid.w) * grid.h);
   result.grid_nodes = grid.used.size();
   Router router(grid, p);
 
@@ -473,6 +559,34 @@ Attempt attempt_routing(const LayoutGraph& g, const std::vector<XY>& start, cons
       for (std::size_t i = 0; i < ends[v].size(); ++i) planned[ends[v][i].first][ends[v][i].second ? 0 : 1] = ports[i];
     }
   }
+  // Whether leaving v through port d (geographic direction theta) keeps the ports in the
+  // circular order of the geographic directions, with enough free ports in every gap for the
+  // edges still to be routed there (so that no later edge is left without an in-order port).
+  std::vector<std::vector<double>> end_angles(n);
+  for (const auto& c : chains) {
+    end_angles[c.nodes.front()].push_back(geo_angle(c, true));
+    end_angles[c.nodes.back()].push_back(geo_angle(c, false));
+  }
+  auto keeps_order = [&](std::uint32_t v, double theta, int d) {
+    std::vector<std::pair<double, int>> fixed;  // (angle, port)
+    for (auto [port, angle] : anchor_ports[v]) fixed.push_back({angle, port});
+    fixed.push_back({theta, d});
+    std::sort(fixed.begin(), fixed.end());
+    std::vector<double> pending = end_angles[v];
+    for (const auto& f : fixed)
+      if (auto it = std::find(pending.begin(), pending.end(), f.first); it != pending.end()) pending.erase(it);
+    int turns = 0;
+    for (std::size_t i = 0; i < fixed.size(); ++i) {
+      const auto [a0, p0] = fixed[i];
+      const auto [a1, p1] = fixed[(i + 1) % fixed.size()];
+      const int gap = fixed.size() == 1 ? 8 : (p1 - p0 + 8) % 8;  // ports counter-clockwise from p0 to p1
+      turns += gap;
+      int due = 0;  // pending edges whose direction lies between a0 and a1
+      for (double a : pending) due += fixed.size() == 1 || (a0 < a1 ? (a > a0 && a < a1) : (a > a0 || a < a1));
+      if (gap == 0 || gap - 1 < due) return false;
+    }
+    return turns == 8;  // once round: the ports are in the angles' cyclic order
+  };
   auto endpoint = [&](std::uint32_t v, const Chain& c, int chain_id, bool front, int radius) {
     Endpoint ep;
     ep.station = static_cast<int>(v);
@@ -494,24 +608,9 @@ Attempt attempt_routing(const LayoutGraph& g, const std::vector<XY>& start, cons
     }
     // Ports: free ones, in the circular order of the anchor's geographic edge directions.
     double theta = geo_angle(c, front);
-    const auto& used = anchor_ports[v];
     for (int d = 0; d < 8; ++d) ep.allowed[d] = port_chain[v][d] < 0;
     std::array<bool, 8> in_order;
-    in_order.fill(true);
-    if (used.size() >= 2) {
-      // predecessor: largest angle below theta (cyclically), successor: smallest above.
-      auto below = std::max_element(used.begin(), used.end(), [&](auto a, auto b) {
-        auto key = [&](double ang) { return ang < theta ? ang : ang - 4 * M_PI; };
-        return key(a.second) < key(b.second);
-      });
-      auto above = std::min_element(used.begin(), used.end(), [&](auto a, auto b) {
-        auto key = [&](double ang) { return ang >= theta ? ang : ang + 4 * M_PI; };
-        return key(a.second) < key(b.second);
-      });
-      std::array<bool, 8> between{};
-      for (int q = (below->first + 1) % 8; q != above->first; q = (q + 1) % 8) between[q] = true;
-      in_order = between;
-    }
+    for (int d = 0; d < 8; ++d) in_order[d] = ep.allowed[d] && keeps_order(v, theta, d);
     // A line that continues through the anchor would rather go straight on.
     for (int d = 0; d < 8; ++d) {
       double cost = 0;
@@ -620,16 +719,39 @@ Attempt attempt_routing(const LayoutGraph& g, const std::vector<XY>& start, cons
   // and goes again before them (each chain at most a few times, rip-ups capped overall).
   std::vector<std::vector<int>> grid_path(chains.size());
   std::vector<std::array<int, 2>> ports_of(chains.size(), {-1, -1});
+  // Which chains each chain may still cross: those it crosses geographically, once each.
+  std::vector<std::vector<char>> crossable = geo_crossing;
+  std::vector<std::vector<int>> crossed(chains.size());  // partners of the crossings on each path
+  auto note_crossing = [&](int a, int b) {
+    crossable[a][b] = crossable[b][a] = 0;
+    crossed[a].push_back(b);
+    crossed[b].push_back(a);
+  };
   auto commit = [&](int ci, const std::vector<int>& path) {
     const auto& c = chains[ci];
     int first = path.front(), last = path.back();
     for (auto [v, node] : {std::pair{c.nodes.front(), first}, std::pair{c.nodes.back(), last}})
       if (node_at[v] < 0) place(v, node);
     for (std::size_t i = 1; i + 1 < path.size(); ++i) {
-      grid.used[path[i]] = 1;
-      grid.owner[path[i]] = ci;
+      const int node = path[i];
+      const int din = direction_between(grid, path[i - 1], node), dout = direction_between(grid, node, path[i + 1]);
+      const auto axis = static_cast<std::int8_t>(din == dout ? din % 4 : -1);
+      if (grid.used[node] == 1) {  // crossing another path
+        grid.used[node] = 3;
+        grid.owner2[node] = ci;
+        grid.axis2[node] = axis;
+        note_crossing(ci, grid.owner[node]);
+      } else {
+        grid.used[node] = 1;
+        grid.owner[node] = ci;
+        grid.axis[node] = axis;
+      }
     }
-    for (std::size_t i = 0; i + 1 < path.size(); ++i) grid.take_diagonal(path[i], direction_between(grid, path[i], path[i + 1]));
+    for (std::size_t i = 0; i + 1 < path.size(); ++i) {
+      int d = direction_between(grid, path[i], path[i + 1]);
+      if (int other = grid.crossing_diagonal(path[i], d); other >= 0) note_crossing(ci, other);
+      grid.take_diagonal(path[i], d, ci);
+    }
     int out_port = direction_between(grid, first, path[1]);
     int in_port = direction_between(grid, last, path[path.size() - 2]);
     port_chain[c.nodes.front()][out_port] = ci;
@@ -643,9 +765,27 @@ Attempt attempt_routing(const LayoutGraph& g, const std::vector<XY>& start, cons
     const auto& c = chains[ci];
     const auto& path = grid_path[ci];
     for (std::size_t i = 1; i + 1 < path.size(); ++i) {
-      grid.used[path[i]] = 0;
-      grid.owner[path[i]] = -1;
+      const int node = path[i];
+      if (grid.used[node] == 3) {  // the other path stays
+        if (grid.owner[node] == ci) {
+          grid.owner[node] = grid.owner2[node];
+          grid.axis[node] = grid.axis2[node];
+        }
+        grid.owner2[node] = -1;
+        grid.axis2[node] = -1;
+        grid.used[node] = 1;
+      } else {
+        grid.used[node] = 0;
+        grid.owner[node] = -1;
+        grid.axis[node] = -1;
+      }
     }
+    for (int other : crossed[ci]) {
+      crossable[ci][other] = crossable[other][ci] = geo_crossing[ci][other];
+      auto& list = crossed[other];
+      list.erase(std::find(list.begin(), list.end(), ci));
+    }
+    crossed[ci].clear();
     for (std::size_t i = 0; i + 1 < path.size(); ++i)
       grid.release_diagonal(path[i], direction_between(grid, path[i], path[i + 1]));
     for (auto [v, port] : {std::pair{c.nodes.front(), ports_of[ci][0]}, std::pair{c.nodes.back(), ports_of[ci][1]}}) {
@@ -655,6 +795,7 @@ Attempt attempt_routing(const LayoutGraph& g, const std::vector<XY>& start, cons
     }
     grid_path[ci].clear();
   };
+  bool crossing_any = false;
   auto try_route = [&](int ci) {
     const auto& c = chains[ci];
     std::vector<int> path;
@@ -670,14 +811,38 @@ Attempt attempt_routing(const LayoutGraph& g, const std::vector<XY>& start, cons
         dst.nodes = std::move(keep);
       }
       if (src.nodes.empty() || dst.nodes.empty()) continue;
+      router.allow_crossing(&crossable[ci], crossing_any);
       path = router.route(src, dst);
       if (!path.empty() || node_at[c.nodes.front()] >= 0) break;  // a wider radius only helps unplaced ends
     }
     return path;
   };
   std::deque<int> work(order.begin(), order.end());
-  std::vector<int> tries(chains.size(), 0);
-  std::size_t ripups = 0, max_ripups = 2 * chains.size() + 16;
+  std::size_t evictions = 0, max_evictions = p.evictions_per_chain * chains.size() + 16;
+  std::vector<float> history(grid.used.size(), 0.0f);
+  router.set_history(&history);
+  // The chains a negotiated path goes through rather than legally across, with the node.
+  auto conflicts = [&](int ci, const std::vector<int>& path) {
+    std::vector<std::pair<int, int>> victims;
+    for (std::size_t i = 1; i + 1 < path.size(); ++i) {
+      const int node = path[i];
+      const int din = direction_between(grid, path[i - 1], node), dout = direction_between(grid, node, path[i + 1]);
+      if (grid.used[node] == 1) {
+        const int other = grid.owner[node];
+        const bool legal = din == dout && grid.axis[node] >= 0 && grid.axis[node] != din % 4 &&
+                           (crossable[ci][other] || crossing_any);
+        if (!legal) victims.push_back({other, node});
+      } else if (grid.used[node] == 3) {
+        victims.push_back({grid.owner[node], node});
+        victims.push_back({grid.owner2[node], node});
+      }
+    }
+    for (std::size_t i = 0; i + 1 < path.size(); ++i) {
+      const int other = grid.crossing_diagonal(path[i], direction_between(grid, path[i], path[i + 1]));
+      if (other >= 0 && !crossable[ci][other] && !crossing_any) victims.push_back({other, path[i]});
+    }
+    return victims;
+  };
   while (!work.empty()) {
     int ci = work.front();
     work.pop_front();
@@ -691,17 +856,37 @@ Attempt attempt_routing(const LayoutGraph& g, const std::vector<XY>& start, cons
       commit(ci, path);
       continue;
     }
-    auto blockers = router.blockers();
-    if (++tries[ci] > 3 || blockers.empty() || ripups + blockers.size() > max_ripups) continue;  // give up on it
-    for (int b : blockers) {
-      rip_up(b);
-      work.push_back(b);
+    // Walled in: negotiate (PathFinder-style). The search may go through other chains' paths
+    // at a price that grows with how often that grid node was fought over; the paths it goes
+    // through are torn up and queued again. History spreads the paths out until none is left
+    // walled in, or the eviction budget is spent.
+    if (evictions >= max_evictions) continue;
+    router.set_negotiation(true);
+    path = try_route(ci);
+    router.set_negotiation(false);
+    if (path.empty()) continue;  // not even through others: the fallbacks below try
+    auto victims = conflicts(ci, path);
+    for (auto [victim, node] : victims) history[static_cast<std::size_t>(node)] += p.history_step;
+    for (auto [victim, node] : victims) {
+      if (grid_path[victim].empty()) continue;  // already torn up (it met the path twice)
+      rip_up(victim);
+      work.push_back(victim);
+      ++evictions;
     }
-    ripups += blockers.size();
-    work.push_front(ci);
+    commit(ci, path);
   }
-  result.ripups = ripups;
-  // Whatever is still unrouted goes through other paths rather than straight across.
+  result.ripups = evictions;
+  // Whatever is still walled in crosses paths it does not cross geographically...
+  crossing_any = true;
+  for (std::size_t ci = 0; ci < chains.size(); ++ci) {
+    if (!grid_path[ci].empty() || Clock::now() > deadline) continue;
+    auto path = try_route(static_cast<int>(ci));
+    if (path.empty()) continue;
+    commit(static_cast<int>(ci), path);
+    ++result.crossing_routes;
+  }
+  crossing_any = false;
+  // ...or, as the last resort, goes through other paths rather than straight across.
   router.allow_overlap(true);
   for (std::size_t ci = 0; ci < chains.size(); ++ci) {
     if (!grid_path[ci].empty()) continue;
@@ -764,31 +949,58 @@ Layout route_octilinear(const LayoutGraph& g, const std::vector<XY>& start, cons
                         GridRouteReport* report) {
   auto begin = Clock::now();
   auto deadline = begin + std::chrono::microseconds(static_cast<long long>(p.time_limit_ms * 1000));
-  std::vector<bool> anchor;
+  // Edges that cross geographically (straight between the real positions) may cross in the
+  // layout too, once per pair: a network drawn with crossings (lines that pass over each other
+  // without a shared station) usually has no planar octilinear layout. Such an edge is a chain
+  // of its own, so that the crossing in the layout is between the same two edges.
+  std::vector<std::vector<XY>> straight;
+  for (const auto& [a, b] : g.edges) straight.push_back({g.pos[a], g.pos[b]});
+  auto geo_pairs = crossing_path_pairs(straight, g.edges);
+  std::vector<bool> anchor(g.pos.size(), false);
+  for (auto [e, f] : geo_pairs)
+    for (auto edge : {e, f}) anchor[g.edges[edge].first] = anchor[g.edges[edge].second] = true;
   auto chains = contract(g, anchor);
+  std::vector<int> chain_of(g.edges.size(), -1);
+  for (std::size_t ci = 0; ci < chains.size(); ++ci)
+    for (auto e : chains[ci].edges) chain_of[e] = static_cast<int>(ci);
+  std::vector<std::vector<char>> geo_crossing(chains.size(), std::vector<char>(chains.size(), 0));
+  for (auto [e, f] : geo_pairs) {
+    int a = chain_of[e], b = chain_of[f];
+    if (a >= 0 && b >= 0 && a != b) geo_crossing[a][b] = geo_crossing[b][a] = 1;
+  }
+  // Attempts are ranked by unrouted or overlapping chains, then by added crossings (pairs
+  // that do not cross geographically), then by all crossings.
+  auto rank = [&](const Attempt& a) {
+    auto pairs = crossing_path_pairs(a.layout.paths, g.edges);
+    std::vector<std::pair<std::size_t, std::size_t>> added;
+    std::set_difference(pairs.begin(), pairs.end(), geo_pairs.begin(), geo_pairs.end(), std::back_inserter(added));
+    return std::tuple{a.failed + a.overlapping, added.size(), pairs.size()};
+  };
   Attempt best;
+  std::tuple<std::size_t, std::size_t, std::size_t> best_rank;
   bool have = false;
   int used_attempt = 1;
-  double cell = p.cell;
   std::vector<int> first;
-  (void)first;
   int attempts = std::max(1, p.attempts);
   for (int a = 1; a <= attempts; ++a) {
     // Each attempt gets its share of the time, so a hard first one leaves room for the next.
-    // The first routes freely (fewest bends); later ones keep paths in their corridors (so
-    // dense centres do not wall stations in) and then use a finer grid.
+    // The first two route freely (fewest bends), the second on a grid twice as fine (room in
+    // dense centres); the third keeps paths in their corridors (so that detours do not wall
+    // stations in).
     auto share = begin + (deadline - begin) * a / attempts;
     GridRouteParams variant = p;
-    if (a == 1) variant.corridor_cost = 0;
-    if (a >= 3) cell /= 2;
-    auto attempt = attempt_routing(g, start, chains, anchor, variant, cell, first, share);
+    if (a <= 2) variant.corridor_cost = 0;
+    const double cell = a == 2 ? p.cell / 2 : p.cell;
+    auto attempt = attempt_routing(g, start, chains, anchor, geo_crossing, variant, cell, first, share);
     first = attempt.failed_chains;
-    if (!have || attempt.failed + attempt.overlapping < best.failed + best.overlapping) {
+    auto attempt_rank = rank(attempt);
+    if (!have || attempt_rank < best_rank) {
       best = std::move(attempt);
+      best_rank = attempt_rank;
       have = true;
       used_attempt = a;
     }
-    if (best.failed + best.overlapping == 0 || Clock::now() > deadline) break;
+    if ((std::get<0>(best_rank) == 0 && std::get<1>(best_rank) == 0) || Clock::now() > deadline) break;
   }
   best.layout.method = "grid";
   best.layout.status = best.failed ? (best.timed_out ? "time_limit" : "incomplete")
@@ -802,6 +1014,9 @@ Layout route_octilinear(const LayoutGraph& g, const std::vector<XY>& start, cons
     report->timed_out = best.timed_out;
     report->ripups = best.ripups;
     report->overlapping = best.overlapping;
+    report->crossing_routes = best.crossing_routes;
+    report->crossings = std::get<2>(best_rank);
+    report->geo_crossings = geo_pairs.size();
   }
   return best.layout;
 }

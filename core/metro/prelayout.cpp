@@ -1,5 +1,7 @@
 #include "metro/prelayout.hpp"
 
+#include "metro/topology_guard.hpp"
+
 #include <Eigen/Sparse>
 #include <Eigen/SparseCholesky>
 
@@ -9,16 +11,32 @@
 
 namespace tourmap::metro {
 
-std::vector<XY> stretch_to_lengths(const LayoutGraph& g, double lambda) {
-  const auto n = static_cast<Eigen::Index>(g.pos.size());
-  if (n == 0) return {};
+namespace {
+
+// Maps the mean geographic edge length to the mean target length.
+double length_scale(const LayoutGraph& g) {
   double geo_mean = 0, target_mean = 0;
   for (std::size_t i = 0; i < g.edges.size(); ++i) {
     auto [u, v] = g.edges[i];
     geo_mean += std::hypot(g.pos[v].x - g.pos[u].x, g.pos[v].y - g.pos[u].y);
     target_mean += g.min_length[i];
   }
-  double s = geo_mean > 0 ? target_mean / geo_mean : 1.0;
+  return geo_mean > 0 ? target_mean / geo_mean : 1.0;
+}
+
+}  // namespace
+
+std::vector<XY> scale_to_lengths(const LayoutGraph& g) {
+  const double s = length_scale(g);
+  std::vector<XY> out;
+  for (const auto& p : g.pos) out.push_back({s * p.x, s * p.y});
+  return out;
+}
+
+std::vector<XY> stretch_to_lengths(const LayoutGraph& g, double lambda) {
+  const auto n = static_cast<Eigen::Index>(g.pos.size());
+  if (n == 0) return {};
+  const double s = length_scale(g);
 
   // Normal equations, shared by x and y: (L + lambda I) P = B.
   std::vector<Eigen::Triplet<double>> t;
@@ -87,12 +105,15 @@ std::vector<std::vector<double>> graph_distances(const LayoutGraph& g) {
 
 }  // namespace
 
-std::vector<XY> stress_layout(const LayoutGraph& g, const std::vector<XY>& init, int iterations, double anchor) {
+std::vector<XY> stress_layout(const LayoutGraph& g, const std::vector<XY>& init, const StressOptions& options) {
   std::size_t n = g.pos.size();
   std::vector<XY> x = init;
   if (n < 2) return x;
   auto d = graph_distances(g);
-  for (int it = 0; it < iterations; ++it) {
+  TopologyGuard guard;
+  if (options.keep_topology) guard = make_topology_guard(g, init);
+  const double anchor = options.anchor;
+  for (int it = 0; it < options.iterations; ++it) {
     for (std::size_t i = 0; i < n; ++i) {
       // Localized SMACOF update of node i with weights 1/d^2, plus the anchor to its start.
       double wsum = 0, nx = 0, ny = 0;
@@ -110,7 +131,18 @@ std::vector<XY> stress_layout(const LayoutGraph& g, const std::vector<XY>& init,
       nx += a * init[i].x;
       ny += a * init[i].y;
       wsum += a;
-      x[i] = {nx / wsum, ny / wsum};
+      const XY want{nx / wsum, ny / wsum};
+      if (!options.keep_topology) {
+        x[i] = want;
+        continue;
+      }
+      for (double t : {1.0, 0.5, 0.25}) {
+        const XY to{x[i].x + t * (want.x - x[i].x), x[i].y + t * (want.y - x[i].y)};
+        if (move_keeps_topology(guard, g, x, static_cast<std::uint32_t>(i), to)) {
+          x[i] = to;
+          break;
+        }
+      }
     }
   }
   return x;

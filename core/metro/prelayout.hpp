@@ -14,11 +14,22 @@ namespace tourmap::metro {
 
 std::vector<XY> stretch_to_lengths(const LayoutGraph& g, double lambda = 0.05);
 
+// The geography scaled so that the mean edge gets the mean target length: the same topology
+// (crossings, circular orders) as the geography.
+std::vector<XY> scale_to_lengths(const LayoutGraph& g);
+
+struct StressOptions {
+  int iterations = 60;
+  double anchor = 0.05;        // pull towards `init`, relative to the stress weights
+  bool keep_topology = true;   // moves that change crossings or circular orders are shortened
+                               // (halved twice) or dropped (metro/topology_guard.hpp)
+};
+
 // Stress majorization (SMACOF, Gansner/Koren/North 2004) from `init`: distances between all
 // connected node pairs approach their graph distances over the target lengths, so a dense
 // centre spreads out as much as its edge lengths ask, with a pull of `anchor` towards `init`
-// to keep the geography's orientation. Pairs in different components are left out.
-std::vector<XY> stress_layout(const LayoutGraph& g, const std::vector<XY>& init, int iterations = 60,
-                              double anchor = 0.05);
+// to keep the geography's orientation. Pairs in different components are left out. With
+// keep_topology, `init`'s topology is kept: start from scale_to_lengths to keep the geography's.
+std::vector<XY> stress_layout(const LayoutGraph& g, const std::vector<XY>& init, const StressOptions& options = {});
 
 }  // namespace tourmap::metro

@@ -40,7 +40,7 @@ TEST(OctilinearMip, StartIsFeasibleAndTheSolutionOctilinear) {
   g.edges = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {0, 4}};
   g.edge_lines = {{0}, {0}, {0}, {0}, {1}};
   g.min_length.assign(g.edges.size(), 10.0);
-  auto start = route_octilinear(g, stress_layout(g, stretch_to_lengths(g)), {});
+  auto start = route_octilinear(g, stress_layout(g, scale_to_lengths(g)), {});
   auto mip = build_octilinear_mip(g, start, {});
   EXPECT_LT(max_violation(mip.model, mip.model.start), 1e-9);  // the start is a MIP solution
   auto r = solve_with_cbc(mip.model, 10, 0);

@@ -23,7 +23,7 @@ LayoutGraph graph(std::vector<XY> pos, std::vector<std::pair<std::uint32_t, std:
 }
 
 Layout lay_out(const LayoutGraph& g, GridRouteReport* report = nullptr) {
-  auto start = stress_layout(g, stretch_to_lengths(g));
+  auto start = stress_layout(g, scale_to_lengths(g));
   return route_octilinear(g, start, {}, report);
 }
 
@@ -89,6 +89,60 @@ TEST(Octilinear, ViennaIsFullyOctilinearWithoutCrossings) {
   EXPECT_EQ(q.order_violations, 0u);
 }
 
+TEST(Octilinear, LinesThatCrossWithoutAStationCrossOnceEach) {
+  // Three east-west and three north-south lines, each with four stations, crossing at nine
+  // points where no station is: no planar layout exists, and each pair must cross exactly once.
+  LayoutGraph g;
+  const double coords[4] = {-500, 500, 1500, 2500};
+  for (int line = 0; line < 6; ++line) {
+    const auto first = static_cast<std::uint32_t>(g.pos.size());
+    for (int k = 0; k < 4; ++k)
+      g.pos.push_back(line < 3 ? XY{coords[k], 1000.0 * line} : XY{1000.0 * (line - 3), coords[k]});
+    for (std::uint32_t k = 0; k + 1 < 4; ++k) {
+      g.edges.push_back({first + k, first + k + 1});
+      g.edge_lines.push_back({static_cast<std::uint32_t>(line)});
+      g.min_length.push_back(10);
+    }
+  }
+  GridRouteReport report;
+  auto L = lay_out(g, &report);
+  EXPECT_EQ(L.status, "ok");
+  EXPECT_EQ(report.overlapping, 0u);
+  EXPECT_EQ(report.crossing_routes, 0u);
+  auto q = measure_layout(g, L);
+  EXPECT_EQ(q.octilinear_share, 1.0);
+  EXPECT_EQ(q.geo_crossings, 9u);
+  EXPECT_EQ(q.crossings, 9u);
+  EXPECT_EQ(q.added_crossings, 0u);
+  EXPECT_EQ(report.crossings, 9u);
+  EXPECT_EQ(report.geo_crossings, 9u);
+}
+
+TEST(Octilinear, LondonKeepsItsCrossingsAndOrders) {
+  // The largest shared network: 302 stations, lines that cross without shared stations.
+  auto net = load::load_metro_station_csvs(test::data_file("metro/london.stations.csv"), test::data_file("metro/london.lines.csv"),
+                                           test::data_file("metro/london.connections.csv"));
+  auto proj = geo::projection_for(model::bbox_of(net));
+  LayoutGraph g;
+  for (const auto& n : net.nodes) g.pos.push_back(geo::project(proj, n.pos));
+  for (const auto& e : net.edges) {
+    g.edges.push_back({e.from, e.to});
+    g.edge_lines.push_back(e.lines);
+    g.min_length.push_back(10.0);
+  }
+  separate_coincident(g, 15.0);
+  GridRouteReport report;
+  auto L = lay_out(g, &report);
+  EXPECT_EQ(L.status, "ok");
+  EXPECT_EQ(report.overlapping, 0u);
+  auto q = measure_layout(g, L);
+  EXPECT_EQ(q.octilinear_share, 1.0);
+  EXPECT_GT(q.geo_crossings, 5u);
+  EXPECT_EQ(q.added_crossings, 0u);
+  EXPECT_EQ(q.order_violations, 0u);
+  EXPECT_GT(q.min_edge, 0.0);
+}
+
 TEST(Octilinear, DisconnectedComponentsAndCoincidentStations) {
   auto g = graph({{0, 0}, {1000, 0}, {5000, 5000}, {5000, 5000}, {6000, 5200}}, {{0, 1}, {2, 4}, {3, 4}});
   EXPECT_EQ(separate_coincident(g, 20.0), 2u);
@@ -106,6 +160,16 @@ TEST(LayoutQuality, CountsWhatIsWrong) {
   auto q = measure_layout(g, crossing);
   EXPECT_EQ(q.crossings, 1u);
   EXPECT_EQ(q.geo_crossings, 1u);
+  EXPECT_EQ(q.added_crossings, 0u);
+  // Edges 0-1 and 2-3 do not cross geographically; drawn crossing, the crossing is added.
+  auto sides = graph({{0, 0}, {10, 0}, {0, 10}, {10, 10}}, {{0, 1}, {2, 3}});
+  Layout twisted;
+  twisted.pos = sides.pos;
+  twisted.paths = {{{0, 0}, {5, 5}, {10, 0}}, {{0, 10}, {5, 5}, {10, 10}}};
+  auto t = measure_layout(sides, twisted);
+  EXPECT_EQ(t.geo_crossings, 0u);
+  EXPECT_EQ(t.crossings, 1u);
+  EXPECT_EQ(t.added_crossings, 1u);
   Layout skewed = crossing;
   skewed.paths[0] = {{0, 0}, {10, 3}, {10, 10}};  // a 16.7 degree segment
   EXPECT_EQ(measure_layout(g, skewed).octilinear_share, 0.5);

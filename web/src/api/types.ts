@@ -286,6 +286,8 @@ export interface LayoutQuality {
   bends: number;
   crossings: number;
   geo_crossings: number;
+  /** crossing pairs of edges that do not cross geographically */
+  added_crossings: number;
   order_violations: number;
   min_edge: number;
   mean_edge: number;
