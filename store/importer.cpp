@@ -4,15 +4,41 @@
 #include "load/metro_load.hpp"
 #include "load/osm_roads.hpp"
 #include "load/poi_load.hpp"
+#include "geo/projection.hpp"
 #include "util/hash.hpp"
 
+#include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <stdexcept>
 
 namespace tourmap::store {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+// POIs far beyond the city's metro extent are a wrong file or swapped longitude and latitude,
+// not sights a metro map can show: the import fails, naming the first such POI. "Far" is
+// beyond the extent's diagonal, and at least 50 km.
+void check_pois_near_city(const model::CityInfo& city, const std::vector<model::Poi>& pois, const std::string& source) {
+  const auto& box = city.bbox;
+  if (box.empty()) return;
+  const double diagonal = geo::geodesic_distance_m({box.min_lon, box.min_lat}, {box.max_lon, box.max_lat});
+  const double limit = std::max(50000.0, diagonal);
+  for (std::size_t i = 0; i < pois.size(); ++i) {
+    const auto& p = pois[i].pos;
+    const geo::LonLat nearest{std::clamp(p.lon, box.min_lon, box.max_lon), std::clamp(p.lat, box.min_lat, box.max_lat)};
+    const double off = geo::geodesic_distance_m(p, nearest);
+    if (off <= limit) continue;
+    char text[512];
+    std::snprintf(text, sizeof text,
+                  "%s: POI %zu ('%s', id %s) at %.5f,%.5f is %.0f km outside %s's metro network (at most %.0f km "
+                  "allowed): a POI file for another city, or longitude and latitude swapped?",
+                  source.c_str(), i, pois[i].name.c_str(), pois[i].id.c_str(), p.lon, p.lat, off / 1000, city.id.c_str(),
+                  limit / 1000);
+    throw std::invalid_argument(text);
+  }
+}
 
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
@@ -94,6 +120,7 @@ ImportResult import_pois(Db& db, const PoiImport& req) {
     return result;
   }
   auto pois = load::load_pois(req.file, {req.default_category});
+  check_pois_near_city(*find_city(db, req.city_id), pois, load::file_name(req.file));
   result.rows = pois.size();
   result.version = save_city_pois(db, req.city_id, req.attribution, pois,
                                   {"pois", req.city_id, load::file_name(req.file), fp, result.rows,

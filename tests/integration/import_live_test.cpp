@@ -33,10 +33,10 @@ TEST(ImportLive, NewCityAndRoadsAreServedWithoutRestart) {
 
   // Re-import changes POIs of a city already held in memory: the next read sees them.
   EXPECT_EQ(live.get_json("/api/v1/cities/vienna/pois")["matched"], 63);
-  r = run_command({kTourmapBin, "import", "pois", data_file("poi/berlin_museums_osm_r360.js"), "--city", "vienna",
-                   "--db", live.db()});
+  auto museums = live.dir.write("museums.csv", "name,lon,lat\nAlbertina,16.3681,48.2046\nBelvedere,16.3809,48.1915\n");
+  r = run_command({kTourmapBin, "import", "pois", museums, "--city", "vienna", "--db", live.db()});
   ASSERT_EQ(r.exit_code, 0) << r.output;
-  EXPECT_EQ(live.get_json("/api/v1/cities/vienna/pois")["matched"], 92);
+  EXPECT_EQ(live.get_json("/api/v1/cities/vienna/pois")["matched"], 2);
 
   r = run_command({kTourmapBin, "import", "roads", data_file("roads/berlin-siegessaeule.osm.gz"), "--id", "tiergarten",
                    "--name", "Tiergarten", "--db", live.db()});
@@ -75,6 +75,15 @@ TEST(ImportLive, FailedImportsChangeNothing) {
   r = run_command({kTourmapBin, "import", "metro", loom, "--city", "lisbon", "--name", "Lisbon", "--db", live.db()});
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.output.find("bad.json feature 1"), std::string::npos) << r.output;
+
+  // POIs of another city (Berlin's museums for Vienna): the error names the first one.
+  auto vienna_pois_before = live.get("/api/v1/cities/vienna/pois").body;
+  r = run_command({kTourmapBin, "import", "pois", data_file("poi/berlin_museums_osm_r360.js"), "--city", "vienna",
+                   "--db", live.db()});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.output.find("POI 0"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("outside vienna's metro network"), std::string::npos) << r.output;
+  EXPECT_EQ(live.get("/api/v1/cities/vienna/pois").body, vienna_pois_before);
 
   // Bad usage is exit code 2.
   r = run_command({kTourmapBin, "import", "metro", loom, "--db", live.db()});

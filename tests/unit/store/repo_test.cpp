@@ -152,6 +152,33 @@ TEST_F(RepoTest, BadFileImportChangesNothing) {
   EXPECT_EQ(load_city(db, "freiburg")->metro.nodes.size(), 76u);
 }
 
+TEST_F(RepoTest, PoisFarOutsideTheCityFailTheImport) {
+  import_metro(db, {{"freiburg", "Freiburg", ""}, MetroFormat::loom, {data_file("metro/loom_freiburg.json")}, false});
+  auto imports = count("imports");
+  // Berlin's museums are 600 km from Freiburg's trams.
+  try {
+    import_pois(db, {"freiburg", data_file("poi/berlin_museums_osm_r360.js"), "museum", "", false});
+    ADD_FAILURE() << "imported";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("POI 0"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("outside freiburg"), std::string::npos) << e.what();
+  }
+  // Longitude and latitude swapped in the second record: named, nothing imported.
+  auto swapped = dir.write("swapped.csv", "name,lon,lat\nMuenster,7.8529,47.9956\nSchlossberg,47.9950,7.8600\n");
+  try {
+    import_pois(db, {"freiburg", swapped, "sight", "", false});
+    ADD_FAILURE() << "imported";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("POI 1 ('Schlossberg'"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("swapped"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(count("imports"), imports);
+  EXPECT_TRUE(load_city(db, "freiburg")->pois.empty());
+  // A POI just beyond the network (the limit is at least 50 km) is fine.
+  auto near = dir.write("near.csv", "name,lon,lat\nMuenster,7.8529,47.9956\nTiti,8.1500,47.9000\n");
+  EXPECT_EQ(import_pois(db, {"freiburg", near, "sight", "", false}).rows, 2u);
+}
+
 TEST_F(RepoTest, ImportValidatesIds) {
   EXPECT_THROW(import_metro(db, {{"Bad Id", "X", ""}, MetroFormat::loom, {data_file("metro/loom_freiburg.json")}, false}),
                std::invalid_argument);
