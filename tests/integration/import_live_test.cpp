@@ -30,6 +30,20 @@ TEST(ImportLive, NewCityAndRoadsAreServedWithoutRestart) {
   EXPECT_NE(std::find(ids.begin(), ids.end(), "freiburg"), ids.end());
   auto metro = live.get_json("/api/v1/cities/freiburg/metro");
   EXPECT_GT(metro["features"].size(), 74u);
+  // With its POIs, the new city has a layout and clusters: nothing else is needed.
+  auto sights = live.dir.write("freiburg.csv",
+                               "name,lon,lat\nMuenster,7.8529,47.9956\nSchwabentor,7.8560,47.9918\nAugustinermuseum,7.8527,47.9930\n");
+  r = run_command({kTourmapBin, "import", "pois", sights, "--city", "freiburg", "--db", live.db()});
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  auto layout = live.get_json("/api/v1/cities/freiburg/layout?solver=fast");
+  EXPECT_EQ(layout["stations"]["features"].size(), 74u);
+  EXPECT_EQ(layout["pois"]["features"].size(), 3u);
+  EXPECT_EQ(layout["quality"]["octilinear_share"], 1.0);
+  EXPECT_EQ(layout["quality"]["added_crossings"], 0);
+  auto clusters = live.get_json("/api/v1/cities/freiburg/clusters?m=2");
+  EXPECT_EQ(clusters["clusters"].size(), 2u);
+  EXPECT_EQ(clusters["active"], 3);  // refined down to single sights
+  EXPECT_EQ(live.get_json("/api/v1/cities/freiburg/visual-worth?width=8&height=8")["values"].size(), 64u);
 
   // Re-import changes POIs of a city already held in memory: the next read sees them.
   EXPECT_EQ(live.get_json("/api/v1/cities/vienna/pois")["matched"], 63);
