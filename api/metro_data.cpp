@@ -18,13 +18,7 @@ std::shared_ptr<const CityMetroData> make_city_metro_data(std::shared_ptr<const 
   d->key = city->info.id + "@" + std::to_string(city->info.version);
   d->projection = city->info.projection;
   const auto& net = city->metro;
-  for (const auto& n : net.nodes) d->graph.pos.push_back(geo::project(d->projection, n.pos));
-  for (const auto& e : net.edges) {
-    d->graph.edges.push_back({e.from, e.to});
-    d->graph.edge_lines.push_back(e.lines);
-  }
-  // Two stations at one position cannot both be drawn: 15 m apart keeps them distinct.
-  metro::separate_coincident(d->graph, 15.0);
+  d->graph = metro::layout_graph_of(net, d->projection);  // lengths are set per request
 
   // Nearest station per POI: kd-tree in the plane, then the geodesic distance.
   using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;

@@ -6,6 +6,18 @@
 
 namespace tourmap::metro {
 
+LayoutGraph layout_graph_of(const model::MetroNetwork& net, const geo::LocalProjection& projection, double length) {
+  LayoutGraph g;
+  for (const auto& n : net.nodes) g.pos.push_back(geo::project(projection, n.pos));
+  for (const auto& e : net.edges) {
+    g.edges.push_back({e.from, e.to});
+    g.edge_lines.push_back(e.lines);
+    g.min_length.push_back(length);
+  }
+  separate_coincident(g, 15.0);
+  return g;
+}
+
 std::vector<double> visual_worth_lengths(const LayoutGraph& g, const std::vector<double>& node_worth, double l_const) {
   double mean = 0;
   for (double w : node_worth) mean += w;

@@ -4,6 +4,7 @@
 // eq. 5.3/5.4), and the result: node positions and one octilinear polyline per edge.
 
 #include "geo/projection.hpp"
+#include "model/metro.hpp"
 
 #include <cstdint>
 #include <string>
@@ -32,6 +33,10 @@ struct Layout {
 // normalised to mean 1 over the nodes (so the average edge keeps l_const) and clamped to
 // [0.5, 2.5] * l_const so that no edge vanishes (crowding the octilinear grid) or dwarfs the map.
 std::vector<double> visual_worth_lengths(const LayoutGraph& g, const std::vector<double>& node_worth, double l_const);
+
+// The network in the plane of `projection`, every edge of length `length`, stations at one
+// position moved 15 m apart (separate_coincident: a layout cannot draw them both).
+LayoutGraph layout_graph_of(const model::MetroNetwork& net, const geo::LocalProjection& projection, double length = 10.0);
 
 // Nodes at the same position are moved apart by `gap` metres around their centre (a layout
 // cannot place two stations on one point); returns how many moved.

@@ -1,10 +1,8 @@
-#include "load/metro_load.hpp"
-#include "metro/layout_quality.hpp"
 #include "metro/octilinear_grid.hpp"
-#include "metro/prelayout.hpp"
-#include "test_data.hpp"
 
-#include "geo/projection.hpp"
+#include "metro/layout_quality.hpp"
+#include "metro/prelayout.hpp"
+#include "shared_networks.hpp"
 
 #include <gtest/gtest.h>
 
@@ -72,15 +70,7 @@ TEST(Octilinear, ChainsAreContractedAndStationsStayInOrder) {
 }
 
 TEST(Octilinear, ViennaIsFullyOctilinearWithoutCrossings) {
-  auto net = load::load_metro_loom(test::data_file("metro/loom_wien.json"));
-  auto proj = geo::projection_for(model::bbox_of(net));
-  LayoutGraph g;
-  for (const auto& n : net.nodes) g.pos.push_back(geo::project(proj, n.pos));
-  for (const auto& e : net.edges) {
-    g.edges.push_back({e.from, e.to});
-    g.edge_lines.push_back(e.lines);
-    g.min_length.push_back(10.0);
-  }
+  auto g = test_networks::vienna();
   auto L = lay_out(g);
   EXPECT_EQ(L.status, "ok");
   auto q = measure_layout(g, L);
@@ -119,18 +109,7 @@ TEST(Octilinear, LinesThatCrossWithoutAStationCrossOnceEach) {
 }
 
 TEST(Octilinear, LondonKeepsItsCrossingsAndOrders) {
-  // The largest shared network: 302 stations, lines that cross without shared stations.
-  auto net = load::load_metro_station_csvs(test::data_file("metro/london.stations.csv"), test::data_file("metro/london.lines.csv"),
-                                           test::data_file("metro/london.connections.csv"));
-  auto proj = geo::projection_for(model::bbox_of(net));
-  LayoutGraph g;
-  for (const auto& n : net.nodes) g.pos.push_back(geo::project(proj, n.pos));
-  for (const auto& e : net.edges) {
-    g.edges.push_back({e.from, e.to});
-    g.edge_lines.push_back(e.lines);
-    g.min_length.push_back(10.0);
-  }
-  separate_coincident(g, 15.0);
+  auto g = test_networks::london();
   GridRouteReport report;
   auto L = lay_out(g, &report);
   EXPECT_EQ(L.status, "ok");

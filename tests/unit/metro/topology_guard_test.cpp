@@ -1,9 +1,8 @@
 #include "metro/prelayout.hpp"
 #include "metro/topology_guard.hpp"
 
-#include "load/metro_load.hpp"
 #include "metro/layout_quality.hpp"
-#include "test_data.hpp"
+#include "shared_networks.hpp"
 
 #include <gtest/gtest.h>
 
@@ -55,17 +54,7 @@ TEST(TopologyGuard, RejectsSweepingOverANodeAndChangingTheCircularOrder) {
 }
 
 TEST(StressLayout, KeepsLondonsCrossingsWhenAsked) {
-  auto net = load::load_metro_station_csvs(test::data_file("metro/london.stations.csv"), test::data_file("metro/london.lines.csv"),
-                                           test::data_file("metro/london.connections.csv"));
-  auto proj = geo::projection_for(model::bbox_of(net));
-  LayoutGraph g;
-  for (const auto& n : net.nodes) g.pos.push_back(geo::project(proj, n.pos));
-  for (const auto& e : net.edges) {
-    g.edges.push_back({e.from, e.to});
-    g.edge_lines.push_back(e.lines);
-    g.min_length.push_back(10.0);
-  }
-  separate_coincident(g, 15.0);
+  auto g = test_networks::london();
   auto straight = [&](const std::vector<XY>& pos) {
     std::vector<std::vector<XY>> lines;
     for (auto [a, b] : g.edges) lines.push_back({pos[a], pos[b]});
