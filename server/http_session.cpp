@@ -209,6 +209,10 @@ void HttpSession::send(Response&& res, const std::string& route_label) {
   bool close = res.need_eof() || state_.stopping;
   if (close) res.keep_alive(false);
   response_ = std::make_shared<Response>(std::move(res));
+  // Counted before the write, not after it: a client that has read this response and asks
+  // /metrics next must find it counted. The latency is to the response being ready.
+  const double ready_s = std::chrono::duration<double>(Clock::now() - started_).count();
+  state_.metrics.observe(route_label_, method_, static_cast<int>(response_->result_int()), ready_s);
   stream_.expires_after(seconds(state_.config.request_timeout_s));
   http::async_write(stream_, *response_,
                     [self = shared_from_this(), close](beast::error_code ec, std::size_t bytes) {
@@ -219,7 +223,6 @@ void HttpSession::send(Response&& res, const std::string& route_label) {
 void HttpSession::on_write(bool close_after, beast::error_code ec, std::size_t bytes) {
   int status = response_ ? static_cast<int>(response_->result_int()) : 0;
   double ms = std::chrono::duration<double, std::milli>(Clock::now() - started_).count();
-  state_.metrics.observe(route_label_, method_, status, ms / 1000.0);
   state_.access_log.write(remote_, method_, target_, status, bytes, ms);
   if (counted_) --state_.in_flight;
   counted_ = false;

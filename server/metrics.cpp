@@ -53,7 +53,7 @@ std::string Metrics::render() const {
     out << "tourmap_http_requests_total{route=\"" << label(route) << "\",method=\"" << label(method)
         << "\",status=\"" << status << "\"} " << count << "\n";
   }
-  out << "# HELP tourmap_http_request_duration_seconds Time from request read to response written.\n"
+  out << "# HELP tourmap_http_request_duration_seconds Time from request read to response ready to write.\n"
          "# TYPE tourmap_http_request_duration_seconds histogram\n";
   for (const auto& [route, h] : latency_) {
     auto l = label(route);
