@@ -18,7 +18,7 @@
 namespace tourmap::api {
 namespace {
 
-constexpr int kLayoutVersion = 3;
+constexpr int kLayoutVersion = 4;
 using Clock = std::chrono::steady_clock;
 double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
 
@@ -193,13 +193,14 @@ std::shared_ptr<const CityLayout> compute_city_layout(const CityMetroData& d, co
   } else if (want_mip) {
     auto t_mip = Clock::now();
     auto model = metro::build_octilinear_mip(g, layout, {1.0, 50.0, 1.0, req.l_const});
+    const double build_ms = ms_since(t_mip);
     if (model.model.columns() > kMaxMipColumns) {
       solver["mip"] = {{"status", "skipped"}, {"reason", "network too large for the MIP"}};
     } else {
       auto r = mip(model.model, budget, 0.01);
       nlohmann::json info = {{"status", r.status}, {"columns", model.model.columns()},
                              {"rows", model.model.rows.size()}, {"start_objective", model.start_objective},
-                             {"time_ms", ms_since(t_mip)}};
+                             {"build_ms", build_ms}, {"time_ms", ms_since(t_mip)}};
       if (!r.x.empty()) {
         auto polished = metro::decode_octilinear_mip(model, r.x, g.pos.size());
         auto q = metro::measure_layout(g, polished);
@@ -218,7 +219,14 @@ std::shared_ptr<const CityLayout> compute_city_layout(const CityMetroData& d, co
           info["accepted"] = true;
         } else {
           info["accepted"] = false;
-          info["reason"] = !better ? "no improvement on the start" : "would add crossings or order violations";
+          std::string why = "no improvement on the start";
+          if (better) {
+            why = "it would have " + std::to_string(q.crossings) + " crossings (" + std::to_string(q.added_crossings) +
+                  " added) and " + std::to_string(q.order_violations) + " order violations, the fast layout " +
+                  std::to_string(result->quality.crossings) + " (" + std::to_string(result->quality.added_crossings) +
+                  ") and " + std::to_string(result->quality.order_violations);
+          }
+          info["reason"] = why;
         }
       }
       solver["mip"] = std::move(info);

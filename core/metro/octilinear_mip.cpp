@@ -22,6 +22,174 @@ struct MipEdge {
   double start_len;
 };
 
+// Degree-2 stations that the start passes straight through, with the same lines on both
+// sides, are contracted (as Nöllenburg and Wolff contract degree-2 vertices): their two
+// segments become one MIP segment and the station stays at its share of it, so the MIP has
+// fewer nodes and direction binaries. The merged segment's minimum length keeps each part at
+// least its own share (the start, scaled to the minimum lengths, still satisfies it).
+void contract_straight_stations(const LayoutGraph& g, const std::vector<XY>& pos, std::vector<MipEdge>& edges,
+                                std::vector<MipPlacement>& placement) {
+  const std::size_t n = g.pos.size();
+  std::vector<std::vector<std::size_t>> at(n);
+  for (std::size_t i = 0; i < edges.size(); ++i)
+    for (auto end : {edges[i].a, edges[i].b})
+      if (end < n) at[end].push_back(i);
+  auto sorted_lines = [&](std::uint32_t e) {
+    auto l = g.edge_lines[e];
+    std::sort(l.begin(), l.end());
+    return l;
+  };
+  std::vector<bool> dead(edges.size(), false);
+  std::vector<std::vector<std::uint32_t>> riders(edges.size());  // contracted stations on a segment
+  placement.assign(n, {});
+  for (std::uint32_t v = 0; v < n; ++v) {
+    if (at[v].size() != 2) continue;
+    std::size_t s1 = at[v][0], s2 = at[v][1];
+    if (dead[s1] || dead[s2] || s1 == s2) continue;
+    const MipEdge& e1 = edges[s1];
+    const MipEdge& e2 = edges[s2];
+    if (e1.edge == e2.edge || sorted_lines(e1.edge) != sorted_lines(e2.edge)) continue;
+    const std::uint32_t a = e1.a == v ? e1.b : e1.a, b = e2.a == v ? e2.b : e2.a;
+    if (a == b) continue;
+    const XY da{pos[a].x - pos[v].x, pos[a].y - pos[v].y}, db{pos[b].x - pos[v].x, pos[b].y - pos[v].y};
+    const double la = std::hypot(da.x, da.y), lb = std::hypot(db.x, db.y);
+    if (la <= 0 || lb <= 0 || std::abs(da.x * db.y - da.y * db.x) > 1e-9 * la * lb || da.x * db.x + da.y * db.y >= 0) continue;
+    // Merge: a -> v -> b becomes a -> b; each part keeps its share of the minimum length.
+    MipEdge merged = e1;
+    merged.a = a;
+    merged.b = b;
+    merged.start_len = la + lb;
+    merged.start_sector = sector(pos[a], pos[b]);
+    merged.geo_sector = la >= lb ? e1.geo_sector : e2.geo_sector;
+    merged.min_length = std::min(merged.start_len, std::max(e1.min_length * (la + lb) / la, e2.min_length * (la + lb) / lb));
+    dead[s1] = dead[s2] = true;
+    edges.push_back(merged);
+    dead.push_back(false);
+    std::vector<std::uint32_t> on = riders[s1];
+    on.insert(on.end(), riders[s2].begin(), riders[s2].end());
+    on.push_back(v);
+    riders.push_back(std::move(on));
+    const std::size_t id = edges.size() - 1;
+    for (auto end : {a, b})
+      if (end < n)
+        for (auto& i : at[end])
+          if (i == s1 || i == s2) i = id;
+  }
+  std::vector<MipEdge> kept;
+  for (std::size_t i = 0; i < edges.size(); ++i) {
+    if (dead[i]) continue;
+    const auto& e = edges[i];
+    const double len = std::hypot(pos[e.b].x - pos[e.a].x, pos[e.b].y - pos[e.a].y);
+    for (auto v : riders[i])
+      placement[v] = {true, e.a, e.b, len > 0 ? std::hypot(pos[v].x - pos[e.a].x, pos[v].y - pos[e.a].y) / len : 0.0};
+    kept.push_back(e);
+  }
+  edges = std::move(kept);
+}
+
+// The direction of segment e leaving node v, as terms over its direction binaries (scaled).
+void add_out_direction(const MipEdge& e, std::uint32_t v, double scale, std::vector<std::pair<int, double>>& terms) {
+  for (auto [dir, col] : e.alpha) terms.push_back({col, scale * (e.a == v ? dir : (dir + 4) % 8)});
+}
+
+int start_out_direction(const MipEdge& e, std::uint32_t v) { return e.a == v ? e.start_sector : (e.start_sector + 4) % 8; }
+
+// Circular order (Nöllenburg and Wolff): the segments leaving a node, taken in the geographic
+// circular order of their edges, have strictly increasing directions with one wrap-around:
+// dir(s_i+1) >= dir(s_i) + 1 - 8 beta_i, sum beta_i = 1. Nodes whose start breaks the order
+// (the fast path reports those) are left free, so that the start stays feasible.
+void add_order_rows(const LayoutGraph& g, const std::vector<XY>& pos, const std::vector<MipEdge>& edges,
+                    const std::vector<std::vector<std::size_t>>& at, MipModel& m) {
+  for (std::uint32_t v = 0; v < g.pos.size() && v < pos.size(); ++v) {
+    std::vector<std::size_t> out = at[v];
+    if (out.size() < 2) continue;
+    auto geo_angle = [&](std::size_t i) {
+      auto [a, b] = g.edges[edges[i].edge];
+      const XY far = g.pos[a == v ? b : a];
+      return std::atan2(far.y - g.pos[v].y, far.x - g.pos[v].x);
+    };
+    std::sort(out.begin(), out.end(), [&](std::size_t i, std::size_t j) {
+      const double ai = geo_angle(i), aj = geo_angle(j);
+      return ai != aj ? ai < aj : start_out_direction(edges[i], v) < start_out_direction(edges[j], v);
+    });
+    const std::size_t k = out.size();
+    int wraps = 0;
+    std::vector<double> beta_start(k, 0.0);
+    for (std::size_t i = 0; i < k; ++i) {
+      const int d0 = start_out_direction(edges[out[i]], v), d1 = start_out_direction(edges[out[(i + 1) % k]], v);
+      if (d1 < d0 + 1) {
+        beta_start[i] = 1;
+        ++wraps;
+      }
+    }
+    if (wraps != 1) continue;  // the start breaks the order here
+    std::vector<std::pair<int, double>> one;
+    for (std::size_t i = 0; i < k; ++i) {
+      const int beta = m.add_column(0, 1, 0, true, beta_start[i]);
+      one.push_back({beta, 1.0});
+      std::vector<std::pair<int, double>> row = {{beta, 8.0}};
+      add_out_direction(edges[out[(i + 1) % k]], v, 1.0, row);
+      add_out_direction(edges[out[i]], v, -1.0, row);
+      m.add_row(std::move(row), 1, 1e30);
+    }
+    m.add_row(std::move(one), 1, 1);
+  }
+}
+
+// Planarity for nearby segments (Nöllenburg and Wolff's constraint, restricted to segments
+// within 2 l_const of each other in the start, as all pairs would be quadratic): two segments
+// without a common node keep one of the separations they have in the start, i.e. one lies
+// at least d beyond the other along one of the 8 directions. Only the start's separating
+// directions are offered, so a pair keeps its sides. Pairs that touch or cross in the start
+// (crossings the geography has) are left free. The result is still checked for crossings.
+void add_planarity_rows(const std::vector<XY>& pos, const std::vector<MipEdge>& edges, const OctilinearMip& mip,
+                        double l_const, double big, MipModel& m) {
+  // Coordinate along direction d: E x, NE x+y, N y, NW y-x, W -x, SW -x-y, S -y, SE x-y.
+  constexpr double kCx[8] = {1, 1, 0, -1, -1, -1, 0, 1};
+  constexpr double kCy[8] = {0, 1, 1, 1, 0, -1, -1, -1};
+  auto along = [&](int d, XY q) { return kCx[d] * q.x + kCy[d] * q.y; };
+  const double reach = 2 * l_const, margin = l_const / 4;
+  for (std::size_t i = 0; i < edges.size(); ++i)
+    for (std::size_t j = i + 1; j < edges.size(); ++j) {
+      const auto& s = edges[i];
+      const auto& t = edges[j];
+      if (s.a == t.a || s.a == t.b || s.b == t.a || s.b == t.b) continue;
+      const XY s0 = pos[s.a], s1 = pos[s.b], t0 = pos[t.a], t1 = pos[t.b];
+      const double gap_x = std::max(std::min(t0.x, t1.x) - std::max(s0.x, s1.x), std::min(s0.x, s1.x) - std::max(t0.x, t1.x));
+      const double gap_y = std::max(std::min(t0.y, t1.y) - std::max(s0.y, s1.y), std::min(s0.y, s1.y) - std::max(t0.y, t1.y));
+      if (gap_x > reach || gap_y > reach) continue;
+      double separation[8], best = 0;
+      for (int d = 0; d < 8; ++d) {  // t beyond s along d
+        separation[d] = std::min(along(d, t0), along(d, t1)) - std::max(along(d, s0), along(d, s1));
+        best = std::max(best, separation[d]);
+      }
+      if (best <= 1e-9) continue;  // touching or crossing in the start
+      const double need = std::min(margin, best);
+      std::vector<int> offered;
+      for (int d = 0; d < 8; ++d)
+        if (separation[d] >= need) offered.push_back(d);
+      std::vector<std::pair<int, double>> any;
+      for (int d : offered) {
+        const int gamma = offered.size() == 1 ? -1 : m.add_column(0, 1, 0, true, separation[d] >= need ? 1.0 : 0.0);
+        if (gamma >= 0) any.push_back({gamma, 1.0});
+        for (auto tp : {t.a, t.b})
+          for (auto sq : {s.a, s.b}) {
+            // along(t end) - along(s end) >= need, relaxed by big when gamma is 0.
+            std::vector<std::pair<int, double>> row;
+            if (kCx[d] != 0) row.insert(row.end(), {{mip.x[tp], kCx[d]}, {mip.x[sq], -kCx[d]}});
+            if (kCy[d] != 0) row.insert(row.end(), {{mip.y[tp], kCy[d]}, {mip.y[sq], -kCy[d]}});
+            if (gamma >= 0) {
+              row.push_back({gamma, -big});
+              m.add_row(std::move(row), need - big, 1e30);
+            } else {
+              m.add_row(std::move(row), need, 1e30);
+            }
+          }
+      }
+      if (!any.empty()) m.add_row(std::move(any), 1, 1e30);
+    }
+}
+
 }  // namespace
 
 OctilinearMip build_octilinear_mip(const LayoutGraph& g, const Layout& start_in, const MipLayoutParams& p) {
@@ -64,6 +232,7 @@ OctilinearMip build_octilinear_mip(const LayoutGraph& g, const Layout& start_in,
       edges.push_back({nodes[i - 1], nodes[i], e, sector(path[i - 1], path[i]), geo, std::min(share, len), {}, len});
     }
   }
+  contract_straight_stations(g, pos, edges, mip.placement);
 
   double x0 = pos[0].x, x1 = pos[0].x, y0 = pos[0].y, y1 = pos[0].y;
   for (const auto& q : pos) {
@@ -76,9 +245,10 @@ OctilinearMip build_octilinear_mip(const LayoutGraph& g, const Layout& start_in,
   double pad = extent;
   double big = 4 * extent + 100;  // big-M: larger than any coordinate difference
 
-  for (const auto& q : pos) {
-    mip.x.push_back(m.add_column(x0 - pad, x1 + pad, 0, false, q.x));
-    mip.y.push_back(m.add_column(y0 - pad, y1 + pad, 0, false, q.y));
+  for (std::uint32_t v = 0; v < pos.size(); ++v) {
+    const bool contracted = v < mip.placement.size() && mip.placement[v].on;
+    mip.x.push_back(contracted ? -1 : m.add_column(x0 - pad, x1 + pad, 0, false, pos[v].x));
+    mip.y.push_back(contracted ? -1 : m.add_column(y0 - pad, y1 + pad, 0, false, pos[v].y));
   }
 
   const double r2 = 1.0 / std::sqrt(2.0);
@@ -126,14 +296,17 @@ OctilinearMip build_octilinear_mip(const LayoutGraph& g, const Layout& start_in,
       m.add_row({{lam, 1}, {mip.x[e.b], -cxv}, {mip.x[e.a], cxv}, {mip.y[e.b], -cyv}, {mip.y[e.a], cyv}}, 0, 1e30);
   }
 
-  // cost_bend between consecutive segments: at dummy nodes (same edge) and where a line passes
-  // a station. Turn = min_k |out - in + 8k|, with direction values sum(i * alpha_i) and +4 for a
-  // segment stored against the walking direction.
   std::vector<std::vector<std::size_t>> at(pos.size());
   for (std::size_t i = 0; i < edges.size(); ++i) {
     at[edges[i].a].push_back(i);
     at[edges[i].b].push_back(i);
   }
+  add_order_rows(g, pos, edges, at, m);
+  add_planarity_rows(pos, edges, mip, p.l_const, 2 * big, m);
+
+  // cost_bend between consecutive segments: at dummy nodes (same edge) and where a line passes
+  // a station. Turn = min_k |out - in + 8k|, with direction values sum(i * alpha_i) and +4 for a
+  // segment stored against the walking direction.
   auto add_bend = [&](std::size_t in, std::size_t out, std::uint32_t v) {
     const auto& ei = edges[in];
     const auto& eo = edges[out];
@@ -183,7 +356,15 @@ OctilinearMip build_octilinear_mip(const LayoutGraph& g, const Layout& start_in,
 
 Layout decode_octilinear_mip(const OctilinearMip& mip, const std::vector<double>& x, std::size_t nodes) {
   Layout out;
-  auto at = [&](std::uint32_t v) { return XY{x[static_cast<std::size_t>(mip.x[v])], x[static_cast<std::size_t>(mip.y[v])]}; };
+  auto column_at = [&](std::uint32_t v) {
+    return XY{x[static_cast<std::size_t>(mip.x[v])], x[static_cast<std::size_t>(mip.y[v])]};
+  };
+  auto at = [&](std::uint32_t v) {
+    if (mip.x[v] >= 0) return column_at(v);
+    const auto& p = mip.placement[v];  // contracted: at its share of the segment through it
+    const XY a = column_at(p.a), b = column_at(p.b);
+    return XY{a.x + p.t * (b.x - a.x), a.y + p.t * (b.y - a.y)};
+  };
   for (std::uint32_t v = 0; v < nodes; ++v) out.pos.push_back(at(v));
   for (const auto& list : mip.edge_nodes) {
     std::vector<XY> path;

@@ -12,8 +12,14 @@
 //   - cost_topo (rpos): 1 when a segment leaves its edge's geographic sector;
 //   - cost_length: the segment's L-infinity length in units of l_const;
 //   - weights 1 / 50 / 1 (the paper's).
-// Like the paper, no planarity constraints: the result is checked for crossings and circular
-// order afterwards and kept only when it is no worse than the start.
+//   - degree-2 stations the start passes straight through are contracted: not MIP nodes, but
+//     kept at their share of the one segment through them;
+//   - circular order at every node (N&W's cyclic constraints), where the start keeps it;
+//   - planarity (N&W's 8-direction separation) for segment pairs within 2 l_const of each other
+//     in the start, offering only the directions that separate them there (all pairs would be
+//     quadratic in size).
+// Far pairs are unconstrained, so the result is checked for crossings and circular order
+// afterwards and kept only when it is no worse than the start.
 
 #include "metro/layout_graph.hpp"
 #include "metro/mip_model.hpp"
@@ -25,9 +31,17 @@ struct MipLayoutParams {
   double l_const = 10.0;
 };
 
+// A contracted station: at fraction t of the MIP segment from node a to node b.
+struct MipPlacement {
+  bool on = false;
+  std::uint32_t a = 0, b = 0;
+  double t = 0;
+};
+
 struct OctilinearMip {
   MipModel model;
-  std::vector<int> x, y;                       // columns per MIP node (originals first)
+  std::vector<int> x, y;                       // columns per MIP node (originals first), -1 when contracted
+  std::vector<MipPlacement> placement;         // per original node: where a contracted one stays
   std::vector<std::vector<std::uint32_t>> edge_nodes;  // per original edge: its MIP nodes in order
   double start_objective = 0;  // the start's value of the model's objective
 };

@@ -3,6 +3,7 @@
 #include "metro/octilinear_grid.hpp"
 #include "metro/octilinear_mip.hpp"
 #include "metro/prelayout.hpp"
+#include "shared_networks.hpp"
 
 #include <gtest/gtest.h>
 
@@ -57,6 +58,55 @@ TEST(OctilinearMip, StartIsFeasibleAndTheSolutionOctilinear) {
       len += std::hypot(layout.paths[e][i].x - layout.paths[e][i - 1].x, layout.paths[e][i].y - layout.paths[e][i - 1].y);
     EXPECT_GE(len, 10.0 - 1e-6);
   }
+}
+
+TEST(OctilinearMip, StraightDegreeTwoStationsAreContracted) {
+  // One line of five stations, straight in the geography and so in the fast layout.
+  LayoutGraph g;
+  g.pos = {{0, 0}, {1000, 0}, {2000, 0}, {3000, 0}, {4000, 0}};
+  g.edges = {{0, 1}, {1, 2}, {2, 3}, {3, 4}};
+  g.edge_lines.assign(4, {0});
+  g.min_length.assign(4, 10.0);
+  auto start = route_octilinear(g, stress_layout(g, scale_to_lengths(g)), {});
+  auto mip = build_octilinear_mip(g, start, {});
+  for (std::uint32_t v : {1u, 2u, 3u}) {
+    EXPECT_EQ(mip.x[v], -1) << v;
+    EXPECT_TRUE(mip.placement[v].on) << v;
+  }
+  EXPECT_GE(mip.x[0], 0);
+  EXPECT_GE(mip.x[4], 0);
+  EXPECT_LT(max_violation(mip.model, mip.model.start), 1e-9);
+  auto r = solve_with_cbc(mip.model, 10, 0);
+  ASSERT_FALSE(r.x.empty());
+  auto layout = decode_octilinear_mip(mip, r.x, g.pos.size());
+  // The stations stay on the line, in order, each edge at least its minimum length.
+  auto q = measure_layout(g, layout);
+  EXPECT_EQ(q.octilinear_share, 1.0);
+  EXPECT_GE(q.min_edge, 10.0 - 1e-6);
+  for (std::uint32_t v = 1; v < 5; ++v) {
+    const XY a = layout.pos[v - 1], b = layout.pos[v];
+    EXPECT_GT(std::hypot(b.x - a.x, b.y - a.y), 0.0);
+    if (v >= 2) {
+      const XY z = layout.pos[v - 2];
+      EXPECT_NEAR((a.x - z.x) * (b.y - a.y) - (a.y - z.y) * (b.x - a.x), 0.0, 1e-6);  // collinear
+      EXPECT_GT((a.x - z.x) * (b.x - a.x) + (a.y - z.y) * (b.y - a.y), 0.0);          // onwards
+    }
+  }
+}
+
+TEST(OctilinearMip, KeepsViennasOrdersAndAddsNoNearbyCrossings) {
+  auto g = test_networks::vienna();
+  auto start = route_octilinear(g, stress_layout(g, scale_to_lengths(g)), {});
+  ASSERT_EQ(measure_layout(g, start).order_violations, 0u);
+  auto mip = build_octilinear_mip(g, start, {});
+  EXPECT_LT(max_violation(mip.model, mip.model.start), 1e-9);
+  auto r = solve_with_cbc(mip.model, 5, 0);
+  ASSERT_FALSE(r.x.empty());
+  EXPECT_LT(max_violation(mip.model, r.x), 1e-6);
+  auto q = measure_layout(g, decode_octilinear_mip(mip, r.x, g.pos.size()));
+  EXPECT_EQ(q.octilinear_share, 1.0);
+  EXPECT_EQ(q.order_violations, 0u);  // the cyclic-order rows
+  EXPECT_EQ(q.added_crossings, 0u);   // the planarity rows
 }
 
 }  // namespace
