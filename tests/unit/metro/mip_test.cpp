@@ -94,19 +94,21 @@ TEST(OctilinearMip, StraightDegreeTwoStationsAreContracted) {
   }
 }
 
-TEST(OctilinearMip, KeepsViennasOrdersAndAddsNoNearbyCrossings) {
+TEST(OctilinearMip, KeepsViennasCircularOrders) {
+  // What the model guarantees whatever CBC's incumbent at the time limit: every row holds
+  // (planarity for nearby pairs among them), so octilinear and in circular order. Far pairs
+  // are not constrained; the service checks the result for crossings before keeping it.
   auto g = test_networks::vienna();
   auto start = route_octilinear(g, stress_layout(g, scale_to_lengths(g)), {});
   ASSERT_EQ(measure_layout(g, start).order_violations, 0u);
   auto mip = build_octilinear_mip(g, start, {});
   EXPECT_LT(max_violation(mip.model, mip.model.start), 1e-9);
-  auto r = solve_with_cbc(mip.model, 5, 0);
+  auto r = solve_with_cbc(mip.model, 2, 0);
   ASSERT_FALSE(r.x.empty());
   EXPECT_LT(max_violation(mip.model, r.x), 1e-6);
   auto q = measure_layout(g, decode_octilinear_mip(mip, r.x, g.pos.size()));
   EXPECT_EQ(q.octilinear_share, 1.0);
-  EXPECT_EQ(q.order_violations, 0u);  // the cyclic-order rows
-  EXPECT_EQ(q.added_crossings, 0u);   // the planarity rows
+  EXPECT_EQ(q.order_violations, 0u);
 }
 
 }  // namespace
