@@ -30,7 +30,8 @@ void add_system_routes(Router& router, AppContext& ctx) {
                                                "/api/v1/cities/{id}/clusters",
                                                "/api/v1/roads", "/api/v1/roads/{id}", "/api/v1/deform/focus",
                                                "/api/v1/deform/mental", "/api/v1/deform/destination",
-                                               "/api/v1/events", "/healthz", "/metrics"}}});
+                                               "/api/v1/events", "/api/v1/crowd/scenes", "/api/v1/crowd/stream",
+                                               "/healthz", "/metrics"}}});
     r.cacheable = true;
     return r;
   });

@@ -3,6 +3,8 @@
 // routes (/metrics) and static files.
 
 #include "catalog.hpp"
+#include "crowd_assets.hpp"
+#include "crowd_view.hpp"
 #include "deform_service.hpp"
 #include "metro_service.hpp"
 #include "router.hpp"
@@ -19,6 +21,8 @@ struct AppContext {
   MetroService& metro;
   std::string version;  // tourmap build version
   std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
+  CrowdAssets* crowd = nullptr;  // null: the crowd scenes list without triangle counts
+  CrowdLimits crowd_limits{};
 };
 
 // Limits applied by the handlers (documented in openapi.yaml).
@@ -30,6 +34,7 @@ void add_city_routes(Router& router, AppContext& ctx);
 void add_road_routes(Router& router, AppContext& ctx);
 void add_deform_routes(Router& router, AppContext& ctx);
 void add_metro_routes(Router& router, AppContext& ctx);
+void add_crowd_routes(Router& router, AppContext& ctx);
 
 inline void add_api_routes(Router& router, AppContext& ctx) {
   add_system_routes(router, ctx);
@@ -37,6 +42,7 @@ inline void add_api_routes(Router& router, AppContext& ctx) {
   add_road_routes(router, ctx);
   add_deform_routes(router, ctx);
   add_metro_routes(router, ctx);
+  add_crowd_routes(router, ctx);
 }
 
 }  // namespace tourmap::api

@@ -76,6 +76,12 @@ int cmd_serve(const std::vector<std::string>& args) {
       ("host", po::value(&c.host)->default_value(c.host), "address to listen on (0.0.0.0 for all)")
       ("port", po::value(&c.port)->default_value(c.port), "port (0 picks a free one)")
       ("web-root", po::value(&c.web_root)->default_value(c.web_root), "directory of the built web client")
+      ("data-dir", po::value(&c.data_dir)->default_value(c.data_dir),
+       "sample data directory (crowd models are read from its models/)")
+      ("crowd-streams", po::value(&c.max_crowd_streams)->default_value(c.max_crowd_streams),
+       "concurrent crowd streams (each renders on the one render thread)")
+      ("crowd-max-subdivision", po::value(&c.crowd_max_subdivision)->default_value(c.crowd_max_subdivision),
+       "cap on the Loop subdivision of crowd characters (-1: the scene's; 0: base meshes, fast to prepare)")
       ("io-threads", po::value(&c.io_threads)->default_value(c.io_threads), "threads for network IO")
       ("compute-threads", po::value(&c.compute_threads)->default_value(c.compute_threads),
        "threads for computation (0: one per core)")

@@ -4,7 +4,7 @@
 
 namespace tourmap::server {
 
-void register_routes(ServerState& state, api::AppContext& ctx, EventHub& events) {
+void register_routes(ServerState& state, api::AppContext& ctx, EventHub& events, CrowdStreamer& crowd) {
   api::add_api_routes(state.router, ctx);
   state.router.add("GET", "/metrics", api::Exec::io, [&state](api::Request&) {
     api::Response r;
@@ -20,6 +20,7 @@ void register_routes(ServerState& state, api::AppContext& ctx, EventHub& events)
     return r;
   });
   state.ws_endpoints["/api/v1/events"] = events.endpoint();
+  state.ws_endpoints["/api/v1/crowd/stream"] = crowd.endpoint();
 }
 
 std::vector<std::pair<std::string, std::string>> registered_routes() {
@@ -35,7 +36,9 @@ std::vector<std::pair<std::string, std::string>> registered_routes() {
   api::AppContext ctx{db, catalog, deform, metro, "routes"};
   boost::asio::io_context ioc;
   EventHub events(ioc, db, std::chrono::milliseconds(1000));
-  register_routes(state, ctx, events);
+  api::CrowdAssets assets(config.data_dir + "/models", nullptr);
+  CrowdStreamer crowd(assets, ctx.crowd_limits);  // never started: no render thread
+  register_routes(state, ctx, events, crowd);
   std::vector<std::pair<std::string, std::string>> out;
   for (const auto& r : state.router.routes()) out.emplace_back(r.method, r.pattern);
   for (const auto& [path, ep] : state.ws_endpoints) out.emplace_back("WS", path);

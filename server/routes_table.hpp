@@ -1,6 +1,7 @@
 #pragma once
 // The full route table: API routes, server routes (/metrics, the spec) and WebSocket endpoints.
 
+#include "crowd_stream.hpp"
 #include "events.hpp"
 #include "server_state.hpp"
 
@@ -12,7 +13,7 @@
 
 namespace tourmap::server {
 
-void register_routes(ServerState& state, api::AppContext& ctx, EventHub& events);
+void register_routes(ServerState& state, api::AppContext& ctx, EventHub& events, CrowdStreamer& crowd);
 
 // (method, pattern) of everything register_routes adds; WebSocket endpoints as ("WS", path).
 std::vector<std::pair<std::string, std::string>> registered_routes();

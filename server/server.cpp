@@ -64,7 +64,11 @@ int serve(const Config& config, const std::function<void(unsigned short)>& on_li
   api::AppContext ctx{db, catalog, deform, metro, TOURMAP_VERSION};
   net::io_context ioc(static_cast<int>(config.io_threads));
   EventHub events(ioc, db, std::chrono::milliseconds(2000));
-  register_routes(state, ctx, events);
+  api::CrowdAssets crowd_assets(config.data_dir + "/models", &db, config.crowd_max_subdivision);
+  ctx.crowd = &crowd_assets;
+  ctx.crowd_limits.max_streams = config.max_crowd_streams;
+  CrowdStreamer crowd(crowd_assets, ctx.crowd_limits);
+  register_routes(state, ctx, events, crowd);
   add_gauges(state);
 
   tcp::acceptor acceptor(ioc);
@@ -82,6 +86,7 @@ int serve(const Config& config, const std::function<void(unsigned short)>& on_li
 
   accept_loop(acceptor, ioc, state);
   events.start();
+  crowd.start();
 
   net::steady_timer drain(ioc);
   auto drain_deadline = std::chrono::steady_clock::now();
@@ -108,6 +113,7 @@ int serve(const Config& config, const std::function<void(unsigned short)>& on_li
     boost::system::error_code ignored;
     acceptor.close(ignored);
     events.stop();
+    crowd.request_stop();
     state.http_sessions.close_all();
     state.ws_sessions.close_all();
     drain_deadline = std::chrono::steady_clock::now() +
@@ -121,6 +127,7 @@ int serve(const Config& config, const std::function<void(unsigned short)>& on_li
   ioc.run();
   for (auto& t : threads) t.join();
 
+  crowd.stop();
   state.pool.shutdown();  // before the io_context goes: finished tasks post into it
   db.close_idle();
   std::printf("shutdown: done\n");

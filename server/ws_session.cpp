@@ -59,13 +59,28 @@ void WsSession::accept(beast::http::request<beast::http::string_body>&& req) {
 }
 
 void WsSession::send_text(std::string message) { enqueue({std::move(message), false}); }
-void WsSession::send_binary(std::string bytes) { enqueue({std::move(bytes), true}); }
+void WsSession::send_binary(std::string bytes) {
+  ++binary_in_flight_;
+  enqueue({std::move(bytes), true});
+}
+
+void WsSession::post_close(websocket::close_code code, std::string reason) {
+  net::post(ws_.get_executor(), [self = shared_from_this(), code, reason = std::move(reason)]() mutable {
+    self->close(code, std::move(reason));
+  });
+}
 
 void WsSession::enqueue(Outgoing out) {
   net::dispatch(ws_.get_executor(), [self = shared_from_this(), out = std::move(out)]() mutable {
-    if (self->closed_) return;
+    if (self->closed_) {
+      if (out.binary) --self->binary_in_flight_;
+      return;
+    }
     if (self->queue_.size() >= kMaxQueued) {
-      self->queue_.pop_front();
+      // Drop the oldest message that is not being written (the front is, while writing_).
+      auto victim = self->writing_ ? std::next(self->queue_.begin()) : self->queue_.begin();
+      if (victim->binary) --self->binary_in_flight_;
+      self->queue_.erase(victim);
       ++self->dropped_;
     }
     self->queue_.push_back(std::move(out));
@@ -79,7 +94,10 @@ void WsSession::write_next() {
   ws_.binary(queue_.front().binary);
   ws_.async_write(net::buffer(queue_.front().data), [self = shared_from_this()](beast::error_code ec, std::size_t) {
     self->writing_ = false;
-    if (!self->queue_.empty()) self->queue_.pop_front();
+    if (!self->queue_.empty()) {
+      if (self->queue_.front().binary) --self->binary_in_flight_;
+      self->queue_.pop_front();
+    }
     if (ec) return self->finish();
     self->write_next();
   });
@@ -110,7 +128,12 @@ void WsSession::on_read(beast::error_code ec, std::size_t) {
 void WsSession::close(websocket::close_code code, std::string reason) {
   if (closed_) return;
   closed_ = true;
-  queue_.clear();
+  closed_flag_ = true;
+  // The message being written (if any) is accounted for when its write completes.
+  for (auto it = writing_ && !queue_.empty() ? std::next(queue_.begin()) : queue_.begin(); it != queue_.end(); ++it)
+    if (it->binary) --binary_in_flight_;
+  if (writing_ && !queue_.empty()) queue_.erase(std::next(queue_.begin()), queue_.end());
+  else queue_.clear();
   if (!open_) return finish();
   ws_.async_close(websocket::close_reason(code, reason), [self = shared_from_this()](beast::error_code) {
     self->finish();
@@ -121,6 +144,7 @@ void WsSession::finish() {
   if (endpoint_.on_close && open_) endpoint_.on_close(shared_from_this());
   open_ = false;
   closed_ = true;
+  closed_flag_ = true;
   if (registry_id_) {
     state_.ws_sessions.remove(registry_id_);
     registry_id_ = 0;

@@ -11,6 +11,7 @@
 #include <boost/beast/http.hpp>
 #include <boost/beast/websocket.hpp>
 
+#include <atomic>
 #include <deque>
 #include <memory>
 #include <string>
@@ -33,6 +34,12 @@ class WsSession : public std::enable_shared_from_this<WsSession> {
   void close(boost::beast::websocket::close_code code, std::string reason);
 
   std::size_t dropped() const { return dropped_; }
+  // Binary messages queued or being written (any thread): a frame producer renders the next
+  // frame only when this is 0, so a slow client gets the newest frame, never a backlog.
+  std::size_t binary_in_flight() const { return binary_in_flight_.load(); }
+  bool is_closed() const { return closed_flag_.load(); }
+  // close() from any thread.
+  void post_close(boost::beast::websocket::close_code code, std::string reason);
   const std::string& path() const { return path_; }
 
  private:
@@ -56,6 +63,8 @@ class WsSession : public std::enable_shared_from_this<WsSession> {
   bool open_ = false;
   bool closed_ = false;
   std::size_t dropped_ = 0;
+  std::atomic<std::size_t> binary_in_flight_{0};
+  std::atomic<bool> closed_flag_{false};
   std::uint64_t registry_id_ = 0;
 };
 

@@ -41,6 +41,8 @@ struct HierarchyStats {
   std::size_t clusters = 0;
   std::size_t base_triangles = 0;
   std::size_t stored_triangles = 0;      // over all clusters
+  std::size_t clusters_short_of_half = 0;  // parents whose simplification ran out of legal
+                                           // collapses (locked borders, flips) before half
   std::vector<std::size_t> poses_per_animation;           // sampled poses
   std::vector<std::size_t> representative_poses_per_animation;
   double pose_selection_ms = 0, clustering_ms = 0, simplification_ms = 0, total_ms = 0;

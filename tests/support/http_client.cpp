@@ -1,5 +1,7 @@
 #include "http_client.hpp"
 
+#include <thread>
+
 #include <boost/asio/connect.hpp>
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/ip/tcp.hpp>
@@ -85,11 +87,24 @@ void WsClient::send(const std::string& text) {
   impl_->ws.write(net::buffer(text));
 }
 
-std::string WsClient::receive(std::chrono::milliseconds timeout) {
+// Beast's stream timeouts apply to asynchronous operations only: read asynchronously and run
+// the io_context until the message or the timeout (which closes the connection) arrives.
+WsClient::Message WsClient::receive_message(std::chrono::milliseconds timeout) {
   beast::get_lowest_layer(impl_->ws).expires_after(timeout);
   beast::flat_buffer buffer;
-  impl_->ws.read(buffer);
-  return beast::buffers_to_string(buffer.data());
+  beast::error_code ec;
+  impl_->ws.async_read(buffer, [&ec](beast::error_code e, std::size_t) { ec = e; });
+  impl_->ioc.restart();
+  impl_->ioc.run();
+  beast::get_lowest_layer(impl_->ws).expires_never();
+  if (ec) throw beast::system_error(ec);
+  return {!impl_->ws.got_text(), beast::buffers_to_string(buffer.data())};
 }
+
+std::string WsClient::receive(std::chrono::milliseconds timeout) { return receive_message(timeout).data; }
+
+int WsClient::close_code() const { return static_cast<int>(impl_->ws.reason().code); }
+
+void WsClient::pause(std::chrono::milliseconds how_long) { std::this_thread::sleep_for(how_long); }
 
 }  // namespace tourmap::test

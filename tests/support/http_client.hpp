@@ -35,6 +35,16 @@ class WsClient {
   void send(const std::string& text);
   // Next text message; throws on timeout or close.
   std::string receive(std::chrono::milliseconds timeout);
+  // Next message of either kind; `binary` tells which. Throws on timeout or close; after a
+  // close, close_code() holds the server's code.
+  struct Message {
+    bool binary = false;
+    std::string data;
+  };
+  Message receive_message(std::chrono::milliseconds timeout);
+  int close_code() const;
+  // Stops reading for a while (a slow client): the socket buffers fill up, the server must cope.
+  void pause(std::chrono::milliseconds how_long);
 
  private:
   struct Impl;

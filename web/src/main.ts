@@ -4,6 +4,7 @@ import './styles/map.css';
 import './styles/panels.css';
 import './styles/deform.css';
 import './styles/metro.css';
+import './styles/crowd.css';
 import { EventStream } from './api/events';
 import { navigate, routeHash, watchRoute, type Route, type ViewName } from './router';
 import { Shell } from './ui/shell';
@@ -21,12 +22,13 @@ function createView(name: ViewName): View {
     case 'deform':
       return new DeformView((network, replace) => navigate({ view: 'deform', param: network }, replace));
     case 'crowd':
-      return new CrowdView();
+      return new CrowdView((scene, replace) => navigate({ view: 'crowd', param: scene }, replace));
   }
 }
 
 /** Views are made on first visit and kept, so switching back keeps the map as it was. */
 const views = new Map<ViewName, View>();
+let current: View | undefined;
 
 function show(route: Route): void {
   let view = views.get(route.view);
@@ -34,6 +36,8 @@ function show(route: Route): void {
     view = createView(route.view);
     views.set(route.view, view);
   }
+  if (current && current !== view) current.hide?.();
+  current = view;
   if (shell.main.firstElementChild !== view.element) shell.main.replaceChildren(view.element);
   shell.setActive(route.view, routeHash(route));
   view.show(route.param);

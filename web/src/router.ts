@@ -1,10 +1,10 @@
-/** Hash routes: #/metro, #/metro/{city}, #/deform, #/deform/{network}, #/crowd. */
+/** Hash routes: #/metro, #/metro/{city}, #/deform, #/deform/{network}, #/crowd, #/crowd/{scene}. */
 const VIEW_NAMES = ['metro', 'deform', 'crowd'] as const;
 export type ViewName = (typeof VIEW_NAMES)[number];
 
 export interface Route {
   view: ViewName;
-  /** The city or road network the view shows. */
+  /** The city, road network or crowd scene the view shows. */
   param?: string;
 }
 

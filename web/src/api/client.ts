@@ -4,6 +4,7 @@ import type {
   CitySummary,
   ClusterSpace,
   ClustersResponse,
+  CrowdScenesResponse,
   DeformBody,
   DeformKind,
   DeformResponse,
@@ -178,4 +179,9 @@ export function clustersPath(id: string, query: ClusterQuery): string {
 /** GET /cities/{id}/clusters: the active POI clusters of a window. */
 export function fetchClusters(id: string, query: ClusterQuery, signal?: AbortSignal): Promise<ClustersResponse> {
   return getJson<ClustersResponse>(clustersPath(id, query), signal);
+}
+
+/** GET /crowd/scenes: the crowd scenes the server renders, its modes, limits and the models' credits. */
+export function fetchCrowdScenes(signal?: AbortSignal): Promise<CrowdScenesResponse> {
+  return getJson<CrowdScenesResponse>('/crowd/scenes', signal);
 }

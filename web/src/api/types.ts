@@ -367,3 +367,128 @@ export interface ClustersResponse {
   active: number;
   took_ms: number;
 }
+
+// ---- Crowd scenes (GET /crowd/scenes, WS /crowd/stream) ----
+
+export type Vec3 = [x: number, y: number, z: number];
+
+/** A camera in scene metres (+Y up); fov: vertical, in degrees. */
+export interface CrowdCamera {
+  eye: Vec3;
+  target: Vec3;
+  fov: number;
+}
+
+export interface CrowdBounds {
+  min: Vec3;
+  max: Vec3;
+}
+
+/** nolod: every character at full resolution; vdr: view-dependent LOD; vdr+oc: LOD and occlusion culling. */
+export type CrowdMode = 'nolod' | 'vdr' | 'vdr+oc';
+
+export interface CrowdScene {
+  id: string;
+  title: string;
+  description: string;
+  characters: number;
+  models: string[];
+  /** Full-resolution triangles of all characters (null: not known before the scene is built). */
+  triangles: number | null;
+  /** Whether (or how many) walls and furniture can hide people. */
+  occluders: boolean | number;
+  bounds: CrowdBounds;
+  default_camera: CrowdCamera;
+  count: { default: number; min: number; max: number };
+}
+
+export interface CrowdRange {
+  min: number;
+  max: number;
+}
+
+export interface CrowdLimits {
+  max_width: number;
+  max_height: number;
+  min_width: number;
+  min_height: number;
+  max_streams: number;
+  /** More view messages per second close the stream (1008). */
+  max_messages_per_s?: number;
+  /** The server renders at most this many frames per second per stream. */
+  max_fps?: number;
+  poe: CrowdRange;
+  quality: CrowdRange;
+}
+
+export interface CrowdAttribution {
+  /** The model's name, or several names separated by commas ("Horse, Donkey, Cow"). */
+  model: string;
+  text: string;
+  url?: string;
+}
+
+export interface CrowdScenesResponse {
+  scenes: CrowdScene[];
+  modes: CrowdMode[];
+  limits: CrowdLimits;
+  attribution: CrowdAttribution[];
+}
+
+/** Client -> server: the view to render; the latest one wins. */
+export interface CrowdViewMessage {
+  type: 'view';
+  scene: string;
+  mode: CrowdMode;
+  poe: number;
+  width: number;
+  height: number;
+  quality: number;
+  camera: CrowdCamera;
+  heatmap: boolean;
+  animate: boolean;
+  count?: number;
+}
+
+export interface CrowdProgressMessage {
+  type: 'progress';
+  scene: string;
+  stage: string;
+  model?: string;
+  done: number;
+  total: number;
+}
+
+export interface CrowdReadyMessage {
+  type: 'ready';
+  scene: string;
+  characters: number;
+  triangles: number;
+  default_camera: CrowdCamera;
+  bounds: CrowdBounds;
+}
+
+export interface CrowdStatsMessage {
+  type: 'stats';
+  frame: number;
+  scene: string;
+  mode: CrowdMode;
+  poe: number;
+  width: number;
+  height: number;
+  characters: number;
+  triangles: number;
+  /** Full-resolution triangles of the crowd (not in the contract's first version). */
+  full_triangles?: number;
+  clusters: { drawn: number; frustum_culled: number; occluded: number };
+  ms: { lod_cut: number; render: number; encode: number; frame: number; readback?: number };
+  fps: number;
+  bytes: number;
+}
+
+export interface CrowdErrorMessage {
+  type: 'error';
+  error: { code: string; message: string; field?: string | null };
+}
+
+export type CrowdServerMessage = CrowdProgressMessage | CrowdReadyMessage | CrowdStatsMessage | CrowdErrorMessage;

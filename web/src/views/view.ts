@@ -7,4 +7,6 @@ export interface View {
   show(param: string | undefined): void;
   /** Data was imported on the server (undefined: something changed while we were offline). */
   catalogChanged(lastImport: LastImport | undefined): void;
+  /** Another view is shown instead: stop what only matters on screen (a stream, say). */
+  hide?(): void;
 }

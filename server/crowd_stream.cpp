@@ -1,0 +1,360 @@
+#include "crowd_stream.hpp"
+
+#include "crowd_scene_render.hpp"
+#include "ws_session.hpp"
+
+#include "render/camera.hpp"
+#include "render/crowd_renderer.hpp"
+#include "render/egl_context.hpp"
+#include "render/jpeg_encoder.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+
+namespace tourmap::server {
+
+namespace websocket = boost::beast::websocket;
+using Clock = std::chrono::steady_clock;
+
+struct CrowdStreamer::Stream {
+  std::weak_ptr<WsSession> session;
+  std::uint64_t serial = 0;  // occlusion coherence belongs to one stream's camera
+  api::CrowdView view;
+  bool has_view = false;   // a valid view arrived
+  bool dirty = false;      // the view changed since the last frame
+  bool failed = false;     // preparing/rendering failed; wait for a new view
+  std::atomic<std::uint32_t> frame_id{0};
+  // Flow control: a client that acknowledges frames ({"type":"ack","frame":N}) gets the next
+  // frame only after acknowledging the last one, so frames never wait in socket buffers.
+  bool uses_acks = false;
+  std::uint32_t acked = 0;
+  int acks_in_window = 0;
+  std::string ready_for;   // the scene key the last "ready" message described
+  double anim_t = 0;       // animation clock (s), runs while view.animate
+  Clock::time_point last_frame{};
+  Clock::time_point window_start = Clock::now();
+  int messages_in_window = 0;
+  double fps = 0;          // exponential average of the frame rate
+};
+
+struct CrowdStreamer::RenderState {
+  std::unique_ptr<render::EglContext> context;
+  std::unique_ptr<render::CrowdRenderer> renderer;
+  render::JpegEncoder encoder;
+  std::map<std::string, int> model_ids;            // by character key
+  std::map<std::string, std::unique_ptr<PreparedScene>> scenes;  // by "scene/count"
+  std::vector<std::uint8_t> rgba;
+  std::vector<crowd::Placement> placements;
+  std::uint64_t last_stream = 0;  // serial of the stream the renderer's PVS belongs to
+};
+
+namespace {
+
+std::string error_json(const std::string& code, const std::string& message, const std::string& field = "") {
+  return nlohmann::json{{"type", "error"},
+                        {"error", {{"code", code}, {"message", message}, {"field", field.empty() ? nullptr : nlohmann::json(field)}}}}
+      .dump();
+}
+
+std::string frame_header(std::uint32_t id, int width, int height) {
+  std::string h(24, '\0');
+  std::memcpy(h.data(), "TMF1", 4);
+  std::memcpy(h.data() + 4, &id, 4);  // little-endian hosts (x86-64, arm64)
+  const double now_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::system_clock::now().time_since_epoch()).count();
+  std::memcpy(h.data() + 8, &now_ms, 8);
+  const auto w = static_cast<std::uint16_t>(width), hh = static_cast<std::uint16_t>(height);
+  std::memcpy(h.data() + 16, &w, 2);
+  std::memcpy(h.data() + 18, &hh, 2);
+  h[20] = 1;  // JPEG
+  return h;
+}
+
+render::RenderMode to_render_mode(api::CrowdMode m) {
+  switch (m) {
+    case api::CrowdMode::no_lod: return render::RenderMode::no_lod;
+    case api::CrowdMode::vdr: return render::RenderMode::vdr;
+    case api::CrowdMode::vdr_oc: return render::RenderMode::vdr_oc;
+  }
+  return render::RenderMode::vdr;
+}
+
+double ms_between(Clock::time_point a, Clock::time_point b) {
+  return std::chrono::duration<double, std::milli>(b - a).count();
+}
+
+}  // namespace
+
+CrowdStreamer::CrowdStreamer(api::CrowdAssets& assets, api::CrowdLimits limits)
+    : assets_(assets), limits_(limits), render_(std::make_unique<RenderState>()) {}
+
+CrowdStreamer::~CrowdStreamer() { stop(); }
+
+std::size_t CrowdStreamer::streams() const {
+  std::lock_guard lock(mutex_);
+  return streams_.size();
+}
+
+WsEndpoint CrowdStreamer::endpoint() {
+  WsEndpoint ep;
+  ep.on_open = [this](const std::shared_ptr<WsSession>& s) {
+    std::lock_guard lock(mutex_);
+    if (streams_.size() >= limits_.max_streams) {
+      s->send_text(error_json("too_many_streams",
+                              "the server streams to " + std::to_string(limits_.max_streams) +
+                                  " clients at most; try again later"));
+      s->close(websocket::close_code::try_again_later, "too many streams");
+      return;
+    }
+    static std::atomic<std::uint64_t> serials{0};
+    auto st = std::make_shared<Stream>();
+    st->session = s;
+    st->serial = ++serials;
+    streams_[s.get()] = st;
+  };
+  ep.on_text = [this](const std::shared_ptr<WsSession>& s, const std::string& text) {
+    const auto msg = nlohmann::json::parse(text, nullptr, false);
+    const bool is_ack = msg.is_object() && msg.contains("type") && msg["type"] == "ack";
+    std::shared_ptr<Stream> st;
+    {
+      std::lock_guard lock(mutex_);
+      auto it = streams_.find(s.get());
+      if (it == streams_.end()) return;
+      st = it->second;
+      // Flooding: more than max_messages_per_s views (or twice max_fps acks) in one second
+      // closes the stream.
+      const auto now = Clock::now();
+      if (now - st->window_start > std::chrono::seconds(1)) {
+        st->window_start = now;
+        st->messages_in_window = 0;
+        st->acks_in_window = 0;
+      }
+      const bool flooding = is_ack ? ++st->acks_in_window > 2 * limits_.max_fps
+                                   : ++st->messages_in_window > limits_.max_messages_per_s;
+      if (flooding) {
+        streams_.erase(it);
+        s->close(websocket::close_code::policy_error,
+                 is_ack ? "more than " + std::to_string(2 * limits_.max_fps) + " acks per second"
+                        : "more than " + std::to_string(limits_.max_messages_per_s) + " messages per second");
+        return;
+      }
+    }
+    if (msg.is_discarded()) {
+      s->send_text(error_json("bad_request", "the message is not valid JSON", "type"));
+      return;
+    }
+    if (is_ack) {
+      if (!msg.contains("frame") || !msg["frame"].is_number_unsigned()) {
+        s->send_text(error_json("bad_request", "an ack needs the frame id it acknowledges", "frame"));
+        return;
+      }
+      {
+        std::lock_guard lock(mutex_);
+        st->uses_acks = true;
+        const auto frame = msg["frame"].get<std::uint64_t>();
+        const std::uint32_t sent = st->frame_id.load();
+        st->acked = std::max<std::uint32_t>(st->acked, static_cast<std::uint32_t>(std::min<std::uint64_t>(frame, sent)));
+      }
+      wake_.notify_one();
+      return;
+    }
+    try {
+      std::lock_guard lock(mutex_);
+      st->view = api::apply_view_message(msg, st->view, limits_);
+      st->has_view = true;
+      st->dirty = true;
+      st->failed = false;
+    } catch (const api::ApiError& e) {
+      s->send_text(error_json(e.code, e.what(), e.field));
+      return;
+    }
+    wake_.notify_one();
+  };
+  ep.on_close = [this](const std::shared_ptr<WsSession>& s) {
+    std::lock_guard lock(mutex_);
+    streams_.erase(s.get());
+  };
+  return ep;
+}
+
+void CrowdStreamer::start() {
+  std::lock_guard lock(mutex_);
+  if (thread_.joinable()) return;
+  stopping_ = false;
+  thread_ = std::thread([this] { run(); });
+}
+
+void CrowdStreamer::request_stop() {
+  {
+    std::lock_guard lock(mutex_);
+    stopping_ = true;
+  }
+  wake_.notify_all();
+}
+
+void CrowdStreamer::stop() {
+  request_stop();
+  if (thread_.joinable()) thread_.join();
+}
+
+void CrowdStreamer::run() {
+  const auto min_interval = std::chrono::microseconds(1'000'000 / std::max(1, limits_.max_fps));
+  std::size_t turn = 0;  // round robin over streams
+  for (;;) {
+    std::shared_ptr<Stream> due;
+    std::shared_ptr<WsSession> session;
+    {
+      std::unique_lock lock(mutex_);
+      wake_.wait_for(lock, std::chrono::milliseconds(5));
+      if (stopping_) break;
+      const auto now = Clock::now();
+      std::vector<std::pair<std::shared_ptr<Stream>, std::shared_ptr<WsSession>>> ready;
+      for (auto& [key, st] : streams_) {
+        auto s = st->session.lock();
+        if (!s || s->is_closed() || !st->has_view || st->failed) continue;
+        if (!st->dirty && !st->view.animate) continue;     // nothing changed
+        if (s->binary_in_flight() > 0) continue;           // previous frame not written yet
+        if (st->uses_acks && st->acked < st->frame_id.load()) continue;  // nor acknowledged
+        if (now - st->last_frame < min_interval) continue;  // fps cap
+        ready.emplace_back(st, s);
+      }
+      if (ready.empty()) continue;
+      auto& pick = ready[turn++ % ready.size()];
+      due = pick.first;
+      session = pick.second;
+    }
+    render_one(*due, session);
+  }
+  // GL objects go before the context.
+  render_->scenes.clear();
+  render_->renderer.reset();
+  render_->context.reset();
+}
+
+PreparedScene& CrowdStreamer::prepare(const api::CrowdView& view, const std::shared_ptr<WsSession>& session) {
+  const auto* spec = crowd::find_scene_spec(view.scene);
+  const int count = view.count > 0 ? view.count : spec->default_count;
+  const std::string key = view.scene + "/" + std::to_string(count);
+  auto& slot = render_->scenes[key];
+  if (slot) return *slot;
+  auto progress = [&session, &view](const std::string& stage, const std::string& model, int done, int total) {
+    session->send_text(nlohmann::json{{"type", "progress"}, {"scene", view.scene}, {"stage", stage},
+                                      {"model", model}, {"done", done}, {"total", total}}
+                           .dump());
+  };
+  slot = prepare_scene(assets_, *render_->renderer, render_->model_ids, *spec, count, progress);
+  return *slot;
+}
+
+namespace {
+
+std::string ready_json(const std::string& scene, const PreparedScene& p) {
+  const auto& cam = p.scene.default_camera;
+  const auto& b = p.scene.bounds;
+  return nlohmann::json{{"type", "ready"},
+                        {"scene", scene},
+                        {"characters", p.scene.count},
+                        {"triangles", p.full_triangles},
+                        {"default_camera",
+                         {{"eye", {cam.eye.x(), cam.eye.y(), cam.eye.z()}},
+                          {"target", {cam.target.x(), cam.target.y(), cam.target.z()}},
+                          {"fov", cam.fov_deg}}},
+                        {"bounds",
+                         {{"min", {b.min().x(), b.min().y(), b.min().z()}},
+                          {"max", {b.max().x(), b.max().y(), b.max().z()}}}}}
+      .dump();
+}
+
+}  // namespace
+
+void CrowdStreamer::render_one(Stream& st, const std::shared_ptr<WsSession>& session) {
+  api::CrowdView view;
+  bool changed = false;
+  Clock::time_point previous;
+  {
+    std::lock_guard lock(mutex_);
+    view = st.view;
+    changed = st.dirty;
+    st.dirty = false;
+    previous = st.last_frame;
+  }
+  const auto t0 = Clock::now();
+  try {
+    if (!render_->context) {
+      render_->context = std::make_unique<render::EglContext>();
+      render_->renderer = std::make_unique<render::CrowdRenderer>(*render_->context);
+    }
+    PreparedScene& p = prepare(view, session);
+    const std::string scene_key = view.scene + "/" + std::to_string(p.scene.count);
+    if (st.ready_for != scene_key) {  // every stream hears "ready" when its scene is ready
+      session->send_text(ready_json(view.scene, p));
+      st.ready_for = scene_key;
+    }
+    if (view.animate && previous != Clock::time_point{})
+      st.anim_t += std::min(0.25, std::chrono::duration<double>(t0 - previous).count());  // no jumps after stalls
+
+    const auto& dc = p.scene.default_camera;
+    SceneCamera cam;
+    cam.eye = view.has_camera ? crowd::Vec3(view.eye[0], view.eye[1], view.eye[2]) : dc.eye;
+    cam.target = view.has_camera ? crowd::Vec3(view.target[0], view.target[1], view.target[2]) : dc.target;
+    cam.fov_deg = view.has_camera ? view.fov : dc.fov_deg;
+    cam.width = view.width;
+    cam.height = view.height;
+    render::FrameRequest req;
+    scene_frame_request(p, st.anim_t, cam, to_render_mode(view.mode), view.poe, view.heatmap, req, render_->placements);
+    if (render_->last_stream != st.serial) render_->renderer->reset_coherence();
+    render_->last_stream = st.serial;
+    render::FrameStats fs{};
+    render_->renderer->render(req, render_->rgba, fs);
+    const auto t1 = Clock::now();
+    std::string jpeg = render_->encoder.encode_rgba(render_->rgba.data(), view.width, view.height, view.quality, true);
+    const auto t2 = Clock::now();
+    const std::uint32_t id = ++st.frame_id;
+    const std::size_t bytes = jpeg.size();
+    session->send_binary(frame_header(id, view.width, view.height) + jpeg);
+    const double frame_ms = ms_between(t0, t2);
+    if (previous != Clock::time_point{}) {
+      const double dt = std::chrono::duration<double>(t0 - previous).count();
+      if (dt > 0) st.fps = st.fps == 0 ? 1.0 / dt : 0.8 * st.fps + 0.2 / dt;
+    }
+    session->send_text(nlohmann::json{{"type", "stats"},
+                                      {"frame", id},
+                                      {"scene", view.scene},
+                                      {"mode", api::mode_name(view.mode)},
+                                      {"poe", view.poe},
+                                      {"width", view.width},
+                                      {"height", view.height},
+                                      {"characters", p.scene.count},
+                                      {"full_triangles", p.full_triangles},
+                                      {"triangles", fs.triangles},
+                                      {"clusters",
+                                       {{"drawn", fs.clusters_drawn},
+                                        {"frustum_culled", fs.frustum_culled},
+                                        {"occluded", fs.occluded}}},
+                                      {"occlusion_queries", fs.occlusion_queries},
+                                      {"ms",
+                                       {{"lod_cut", fs.lod_cut_ms},
+                                        {"render", fs.render_ms},
+                                        {"readback", fs.readback_ms},
+                                        {"encode", ms_between(t1, t2)},
+                                        {"frame", frame_ms}}},
+                                      {"fps", st.fps},
+                                      {"changed", changed},
+                                      {"bytes", bytes}}
+                           .dump());
+    ++frames_sent_;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "crowd: stream failed: %s\n", e.what());
+    session->send_text(error_json("unavailable", std::string("cannot render the scene: ") + e.what()));
+    std::lock_guard lock(mutex_);
+    st.failed = true;
+  }
+  std::lock_guard lock(mutex_);
+  st.last_frame = t0;
+}
+
+}  // namespace tourmap::server

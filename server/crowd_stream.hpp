@@ -1,0 +1,55 @@
+#pragma once
+// WS /api/v1/crowd/stream: one render thread (it owns the EGL context; GL contexts are bound to
+// a thread) serves every stream in turn. Per stream: the latest valid view message wins, at most
+// one frame is in flight (the next is rendered after the previous was written), frames are
+// rendered only when the view changed or the animation runs, capped at max_fps; a cap on
+// concurrent streams refuses more with close 1013.
+
+#include "crowd_scene_render.hpp"
+#include "server_state.hpp"
+
+#include "api/crowd_assets.hpp"
+#include "api/crowd_view.hpp"
+
+#include <condition_variable>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <thread>
+
+namespace tourmap::server {
+
+class CrowdStreamer {
+ public:
+  CrowdStreamer(api::CrowdAssets& assets, api::CrowdLimits limits);
+  ~CrowdStreamer();
+  CrowdStreamer(const CrowdStreamer&) = delete;
+  CrowdStreamer& operator=(const CrowdStreamer&) = delete;
+
+  WsEndpoint endpoint();
+  void start();  // starts the render thread
+  void request_stop();  // asks the render thread to finish its frame and end (any thread)
+  void stop();          // request_stop() and join
+
+  std::size_t streams() const;
+  std::size_t frames_sent() const { return frames_sent_.load(); }
+
+ private:
+  struct Stream;
+  void run();
+  void render_one(Stream& s, const std::shared_ptr<WsSession>& session);
+  PreparedScene& prepare(const api::CrowdView& view, const std::shared_ptr<WsSession>& session);
+
+  api::CrowdAssets& assets_;
+  api::CrowdLimits limits_;
+  mutable std::mutex mutex_;
+  std::condition_variable wake_;
+  std::map<WsSession*, std::shared_ptr<Stream>> streams_;
+  bool stopping_ = false;
+  std::thread thread_;
+  std::atomic<std::size_t> frames_sent_{0};
+  struct RenderState;
+  std::unique_ptr<RenderState> render_;  // touched only by the render thread
+};
+
+}  // namespace tourmap::server

@@ -1,0 +1,201 @@
+// WS /api/v1/crowd/stream and GET /api/v1/crowd/scenes against a real server. The server runs
+// with --crowd-max-subdivision 0 (base meshes) so a fresh database prepares a scene in seconds;
+// the subdivided scenes are exercised by bench/crowd_bench.
+
+#include "live_server.hpp"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cstring>
+#include <thread>
+
+namespace tourmap::test {
+namespace {
+
+using namespace std::chrono_literals;
+using nlohmann::json;
+
+std::vector<std::string> crowd_flags(const std::string& streams = "4") {
+  return {"--crowd-max-subdivision", "0", "--crowd-streams", streams, "--data-dir", data_dir()};
+}
+
+struct Frame {
+  std::uint32_t id = 0;
+  int width = 0, height = 0;
+  std::string jpeg;
+  json stats;
+};
+
+// Reads until a frame and its stats arrived (progress/ready messages are skipped).
+Frame next_frame(WsClient& ws, std::chrono::milliseconds timeout = 120s) {
+  Frame f;
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  while (std::chrono::steady_clock::now() < deadline) {
+    auto m = ws.receive_message(timeout);
+    if (m.binary) {
+      EXPECT_GE(m.data.size(), 24u);
+      EXPECT_EQ(m.data.substr(0, 4), "TMF1");
+      std::memcpy(&f.id, m.data.data() + 4, 4);
+      std::uint16_t w = 0, h = 0;
+      std::memcpy(&w, m.data.data() + 16, 2);
+      std::memcpy(&h, m.data.data() + 18, 2);
+      f.width = w;
+      f.height = h;
+      EXPECT_EQ(m.data[20], 1);  // JPEG
+      f.jpeg = m.data.substr(24);
+      continue;
+    }
+    auto j = json::parse(m.data);
+    if (j["type"] == "error") throw std::runtime_error("stream error: " + m.data);
+    if (j["type"] == "stats") {
+      f.stats = j;
+      if (!f.jpeg.empty()) return f;
+    }
+  }
+  throw std::runtime_error("no frame in time");
+}
+
+json error_message(WsClient& ws) {
+  for (int i = 0; i < 50; ++i) {
+    auto m = ws.receive_message(60s);
+    if (m.binary) continue;
+    auto j = json::parse(m.data);
+    if (j["type"] == "error") return j["error"];
+  }
+  throw std::runtime_error("no error message");
+}
+
+const char* kSmallOffice =
+    R"({"type":"view","scene":"office","count":12,"width":160,"height":120,"quality":70,"mode":"vdr+oc","animate":false})";
+
+TEST(CrowdApi, ScenesListTheThreeScenesWithLimitsAndAttribution) {
+  LiveServer s(crowd_flags());
+  auto j = s.get_json("/api/v1/crowd/scenes");
+  ASSERT_EQ(j["scenes"].size(), 3u);
+  std::vector<std::string> ids;
+  for (const auto& sc : j["scenes"]) ids.push_back(sc["id"]);
+  EXPECT_EQ(ids, (std::vector<std::string>{"office", "exhibition", "stampede"}));
+  EXPECT_EQ(j["scenes"][1]["characters"], 1000);
+  EXPECT_EQ(j["limits"]["max_streams"], 4);
+  bool cesium = false;
+  for (const auto& a : j["attribution"]) cesium |= a["text"].get<std::string>().find("Cesium") != std::string::npos;
+  EXPECT_TRUE(cesium);
+}
+
+TEST(CrowdApi, StreamSendsJpegFramesWithStatsAndFollowsTheCamera) {
+  LiveServer s(crowd_flags());
+  WsClient ws(s.port(), "/api/v1/crowd/stream");
+  ws.send(kSmallOffice);
+  Frame first = next_frame(ws);
+  EXPECT_EQ(first.width, 160);
+  EXPECT_EQ(first.height, 120);
+  ASSERT_GT(first.jpeg.size(), 100u);
+  EXPECT_EQ(static_cast<unsigned char>(first.jpeg[0]), 0xFF);
+  EXPECT_EQ(static_cast<unsigned char>(first.jpeg[1]), 0xD8);
+  EXPECT_EQ(first.stats["frame"], first.id);
+  EXPECT_EQ(first.stats["characters"], 12);
+  EXPECT_GT(first.stats["triangles"].get<long long>(), 0);
+  EXPECT_GT(first.stats["clusters"]["drawn"].get<long long>(), 0);
+  EXPECT_EQ(first.stats["mode"], "vdr+oc");
+
+  // Look from somewhere else: a new frame with a different image.
+  ws.send(R"({"type":"view","camera":{"eye":[5,1.7,2],"target":[20,1,20],"fov":70}})");
+  Frame moved = next_frame(ws);
+  EXPECT_GT(moved.id, first.id);
+  EXPECT_NE(moved.jpeg, first.jpeg);
+
+  // Nothing changes and the animation is off: no more frames.
+  EXPECT_THROW(ws.receive_message(1500ms), std::exception);
+}
+
+TEST(CrowdApi, BadMessagesGetErrorsNamingTheFieldAndTheStreamGoesOn) {
+  LiveServer s(crowd_flags());
+  WsClient ws(s.port(), "/api/v1/crowd/stream");
+  ws.send("not json");
+  EXPECT_EQ(error_message(ws)["field"], "type");
+  ws.send(R"({"type":"view","scene":"atlantis"})");
+  EXPECT_EQ(error_message(ws)["field"], "scene");
+  ws.send(kSmallOffice);
+  next_frame(ws);
+  ws.send(R"({"type":"view","poe":-1})");
+  EXPECT_EQ(error_message(ws)["field"], "poe");
+  ws.send(R"({"type":"view","width":99999})");
+  EXPECT_EQ(error_message(ws)["field"], "width");
+  ws.send(R"({"type":"view","camera":{"eye":[0,0],"target":[1,1,1]}})");
+  EXPECT_EQ(error_message(ws)["field"], "camera.eye");
+  ws.send(R"({"type":"view","poe":4})");  // still serving
+  Frame f = next_frame(ws);
+  EXPECT_DOUBLE_EQ(f.stats["poe"].get<double>(), 4.0);
+}
+
+TEST(CrowdApi, FloodingClosesTheStreamWithPolicyViolation) {
+  LiveServer s(crowd_flags());
+  WsClient ws(s.port(), "/api/v1/crowd/stream");
+  for (int i = 0; i < 200; ++i) {
+    try {
+      ws.send(R"({"type":"view","scene":"office","count":3,"width":64,"height":64,"animate":false})");
+    } catch (const std::exception&) {
+      break;  // already closed
+    }
+  }
+  bool closed = false;
+  for (int i = 0; i < 400 && !closed; ++i) {
+    try {
+      ws.receive_message(60s);
+    } catch (const std::exception&) {
+      closed = true;
+    }
+  }
+  ASSERT_TRUE(closed);
+  EXPECT_EQ(ws.close_code(), 1008);
+  // The server still serves others.
+  WsClient other(s.port(), "/api/v1/crowd/stream");
+  other.send(kSmallOffice);
+  EXPECT_GT(next_frame(other).jpeg.size(), 100u);
+}
+
+TEST(CrowdApi, StreamsBeyondTheCapAreRefusedClearly) {
+  LiveServer s(crowd_flags("1"));
+  WsClient first(s.port(), "/api/v1/crowd/stream");
+  first.send(kSmallOffice);
+  next_frame(first);
+  WsClient second(s.port(), "/api/v1/crowd/stream");
+  EXPECT_EQ(error_message(second)["code"], "too_many_streams");
+  EXPECT_THROW(second.receive_message(10s), std::exception);
+  EXPECT_EQ(second.close_code(), 1013);
+}
+
+TEST(CrowdApi, AClientThatStopsReadingDoesNotHoldUpOthers) {
+  LiveServer s(crowd_flags());
+  WsClient slow(s.port(), "/api/v1/crowd/stream");
+  slow.send(R"({"type":"view","scene":"office","count":12,"width":640,"height":480,"quality":95,"animate":true})");
+  const Frame seen = next_frame(slow);
+  slow.send(json{{"type", "ack"}, {"frame", seen.id}}.dump());  // this client acknowledges frames
+  // `slow` stops reading while its scene animates; another client must keep getting frames.
+  WsClient other(s.port(), "/api/v1/crowd/stream");
+  other.send(R"({"type":"view","scene":"office","count":12,"width":160,"height":120,"animate":true})");
+  std::uint32_t last = 0;
+  for (int i = 0; i < 5; ++i) {
+    Frame f = next_frame(other, 30s);
+    EXPECT_GT(f.id, last);
+    last = f.id;
+  }
+  // The slow client acknowledged one frame and then stopped: it was sent exactly one more
+  // frame (unacknowledged), not a backlog of every frame rendered meanwhile.
+  slow.send(R"({"type":"view","animate":false})");
+  int frames_waiting = 0;
+  for (;;) {
+    try {
+      auto m = slow.receive_message(1500ms);
+      if (m.binary) ++frames_waiting;
+    } catch (const std::exception&) {
+      break;
+    }
+    ASSERT_LT(frames_waiting, 50) << "the slow client gets a backlog";
+  }
+  EXPECT_EQ(frames_waiting, 1);
+}
+
+}  // namespace
+}  // namespace tourmap::test
