@@ -16,7 +16,7 @@
 namespace tourmap::api {
 namespace {
 
-constexpr int kHierarchyFormat = 1;  // bump when the builder's output changes
+constexpr int kHierarchyFormat = 2;  // bump when the builder's output changes (2: measured error radii)
 
 double ms_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();

@@ -129,12 +129,9 @@ double cut_triangles(const server::PreparedScene& p, const std::vector<const cro
   crowd::CutStats stats;
   for (const auto& pl : placements) {
     const auto& ch = *p.characters[static_cast<std::size_t>(pl.character)];
-    crowd::Affine world = crowd::Affine::Identity();
-    world.translate(pl.position);
-    world.rotate(Eigen::AngleAxisf(pl.heading, crowd::Vec3::UnitY()));
-    world = world * ch.normalize;
     out.clear();
-    crowd::lod_cut(*hierarchies[static_cast<std::size_t>(pl.character)], world, view, poe, out, stats);
+    crowd::lod_cut(*hierarchies[static_cast<std::size_t>(pl.character)], crowd::placement_transform(pl) * ch.normalize,
+                   view, poe, out, stats);
   }
   return static_cast<double>(stats.triangles);
 }
@@ -254,11 +251,7 @@ int main(int argc, char** argv) {
                                                o.width, o.height, 0.1f, 2000.f);
     std::vector<crowd::Affine> worlds;
     for (const auto& pl : placements) {
-      const auto& ch = *p->characters[static_cast<std::size_t>(pl.character)];
-      crowd::Affine w = crowd::Affine::Identity();
-      w.translate(pl.position);
-      w.rotate(Eigen::AngleAxisf(pl.heading, crowd::Vec3::UnitY()));
-      worlds.push_back(w * ch.normalize);
+      worlds.push_back(crowd::placement_transform(pl) * p->characters[static_cast<std::size_t>(pl.character)]->normalize);
     }
     std::vector<double> times;
     std::vector<int> out;

@@ -1,9 +1,9 @@
 // Crowd streaming benchmark (issue 5): the real server (`tourmap serve`, started here on a free
 // port with a temporary database) and 1 and 4 WebSocket clients that stream a scene with the
 // animation running. Per configuration: frames per second per client and in total, end-to-end
-// frame latency (client receive time minus the frame header's server timestamp: render is done
-// before the timestamp, so this is encode + send + receive), server encode/render ms from the
-// stats, JPEG bytes per frame.
+// frame latency (client receive time minus the frame header's timestamp, taken when the server
+// started rendering the frame: render + encode + send + receive), server encode/render ms from
+// the stats, JPEG bytes per frame. Clients acknowledge frames as the web client does.
 //
 //   build/bench/crowd_stream_bench [--scene office] [--seconds 20] [--width 640] [--height 360]
 //       [--poe 2] [--max-subdivision -1] [--db FILE] [--bin build/tourmap] [--data-dir DIR]
@@ -69,6 +69,9 @@ ClientResult stream(unsigned short port, const Options& o, int client) {
       if (m.binary) {
         double sent = 0;
         std::memcpy(&sent, m.data.data() + 8, 8);
+        std::uint32_t id = 0;
+        std::memcpy(&id, m.data.data() + 4, 4);
+        ws.send(json{{"type", "ack"}, {"frame", id}}.dump());
         if (counting) {
           ++r.frames;
           r.latency_ms.push_back(now_epoch_ms() - sent);

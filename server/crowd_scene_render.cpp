@@ -52,11 +52,8 @@ void scene_frame_request(const PreparedScene& p, double t, const SceneCamera& ca
     const auto& anim = ch.model.animations[0];
     const int frames = std::max(1, static_cast<int>(anim.poses.size()));
     const int frame = static_cast<int>(std::floor(pl.anim_time_s * anim.fps)) % frames;
-    crowd::Affine world = crowd::Affine::Identity();
-    world.translate(pl.position);
-    world.rotate(Eigen::AngleAxisf(pl.heading, crowd::Vec3::UnitY()));
-    world = world * ch.normalize;
-    out.instances.push_back({p.model_ids[static_cast<std::size_t>(pl.character)], world, 0, frame});
+    out.instances.push_back(
+        {p.model_ids[static_cast<std::size_t>(pl.character)], crowd::placement_transform(pl) * ch.normalize, 0, frame});
   }
 }
 

@@ -60,13 +60,13 @@ std::string error_json(const std::string& code, const std::string& message, cons
       .dump();
 }
 
-std::string frame_header(std::uint32_t id, int width, int height) {
+// started_ms: when rendering of the frame started (ms since the Unix epoch), so a client's
+// receive time minus it is the whole frame latency: render, encode, send.
+std::string frame_header(std::uint32_t id, int width, int height, double started_ms) {
   std::string h(24, '\0');
   std::memcpy(h.data(), "TMF1", 4);
   std::memcpy(h.data() + 4, &id, 4);  // little-endian hosts (x86-64, arm64)
-  const double now_ms =
-      std::chrono::duration<double, std::milli>(std::chrono::system_clock::now().time_since_epoch()).count();
-  std::memcpy(h.data() + 8, &now_ms, 8);
+  std::memcpy(h.data() + 8, &started_ms, 8);
   const auto w = static_cast<std::uint16_t>(width), hh = static_cast<std::uint16_t>(height);
   std::memcpy(h.data() + 16, &w, 2);
   std::memcpy(h.data() + 18, &hh, 2);
@@ -283,6 +283,8 @@ void CrowdStreamer::render_one(Stream& st, const std::shared_ptr<WsSession>& ses
     previous = st.last_frame;
   }
   const auto t0 = Clock::now();
+  const double started_ms =
+      std::chrono::duration<double, std::milli>(std::chrono::system_clock::now().time_since_epoch()).count();
   try {
     if (!render_->context) {
       render_->context = std::make_unique<render::EglContext>();
@@ -315,7 +317,7 @@ void CrowdStreamer::render_one(Stream& st, const std::shared_ptr<WsSession>& ses
     const auto t2 = Clock::now();
     const std::uint32_t id = ++st.frame_id;
     const std::size_t bytes = jpeg.size();
-    session->send_binary(frame_header(id, view.width, view.height) + jpeg);
+    session->send_binary(frame_header(id, view.width, view.height, started_ms) + jpeg);
     const double frame_ms = ms_between(t0, t2);
     if (previous != Clock::time_point{}) {
       const double dt = std::chrono::duration<double>(t0 - previous).count();

@@ -1,5 +1,6 @@
 #include "crowd/hierarchy_build.hpp"
 
+#include "crowd/cluster_error.hpp"
 #include "crowd/deformation_level.hpp"
 #include "crowd/hierarchy_io.hpp"
 #include "crowd/mesh_topology.hpp"
@@ -10,6 +11,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <tuple>
@@ -294,6 +296,19 @@ ClusterHierarchy build_from_leaves(const SkinnedModel& m, const HierarchyOptions
   for (std::size_t l = 0; l < L; ++l)
     for (std::uint32_t t : leaves[l])
       stored[l].insert(stored[l].end(), m.indices.begin() + 3 * t, m.indices.begin() + 3 * t + 3);
+
+  // Measured errors (ClusterError::measured). Distances at or below `resolution` (1e-6 of the
+  // bind-pose bbox diagonal, the order of float rounding in skinned positions) need not be exact.
+  const bool measured = options.error_metric == ClusterError::measured;
+  double error_ms = 0;
+  std::optional<HausdorffMeter> meter;
+  if (measured) {
+    const auto t_error = Clock::now();
+    meter.emplace(m, canonical, poses, N, 1e-6f * bind.diagonal().norm());
+    for (std::size_t l = 0; l < L; ++l) meter->add_leaf(l, stored[l]);
+    error_ms += ms_since(t_error);
+  }
+
   std::vector<std::uint32_t> merged;
   for (std::size_t n = L; n < N; ++n) {
     const auto [a, b] = nodes[n].children;
@@ -306,11 +321,21 @@ ClusterHierarchy build_from_leaves(const SkinnedModel& m, const HierarchyOptions
     SimplifyResult r = simplifier.simplify(merged, merged.size() / 3 / 2, locked);
     if (!r.reached_target) ++stats.clusters_short_of_half;
     // Error sphere radius (sec. 3.5.1), monotonic up the tree.
-    error[n] = std::max({static_cast<float>(std::sqrt(r.max_quadric_error)), error[static_cast<std::size_t>(a)],
-                         error[static_cast<std::size_t>(b)]});
+    const float children = std::max(error[static_cast<std::size_t>(a)], error[static_cast<std::size_t>(b)]);
+    if (measured) {
+      // The sphere's diameter is the Hausdorff distance H; only an H above twice the children's
+      // radius can raise the radius, so smaller distances need not be exact.
+      const auto t_error = Clock::now();
+      const float hausdorff = meter->measure_parent(n, {a, b}, r.indices, 2 * children);
+      error[n] = std::max(children, 0.5f * hausdorff);
+      error_ms += ms_since(t_error);
+    } else {
+      error[n] = std::max(children, static_cast<float>(std::sqrt(r.max_quadric_error)));
+    }
     stored[n] = std::move(r.indices);
   }
-  stats.simplification_ms = ms_since(t_simplify);
+  stats.error_ms = error_ms;
+  stats.simplification_ms = ms_since(t_simplify) - error_ms;
 
   // Output: clusters in node order (children before parents).
   h.root = root;

@@ -9,8 +9,11 @@
 //   halved by half-edge collapses; vertices the parent's region shares with the rest of the mesh
 //   are locked, so clusters drawn at different levels meet without cracks. A parent that runs out
 //   of legal collapses first keeps what it reached (HierarchyStats::clusters_short_of_half).
-// - Error (sec. 3.5.1): sqrt of the largest collapse cost in the cluster, raised to its children's
-//   errors so it is monotonic; leaves 0. validate_hierarchy() checks it after every build.
+// - Error (sec. 3.5.1, HierarchyOptions::error_metric): by default half the measured largest
+//   distance, over the representative poses, from the original vertices below the cluster to its
+//   simplified triangles (cluster_error.hpp); or sqrt of the largest collapse cost (the paper's
+//   quadric approximation). Raised to the children's errors so it is monotonic; leaves 0.
+//   validate_hierarchy() checks it after every build.
 // - Bounds: bbox of the cluster's vertices over every sampled pose of every animation, grown to
 //   contain the children's bounds (a parent's vertices are a subset of its children's).
 // - Output order: leaves first, then parents in creation order (children before parents; the

@@ -196,6 +196,13 @@ void place_agents(const SceneState& scene, double t, std::vector<Placement>& out
   }
 }
 
+Affine placement_transform(const Placement& p) {
+  Affine a = Affine::Identity();
+  a.translate(p.position);
+  a.rotate(Eigen::AngleAxisf(p.heading, Vec3::UnitY()));
+  return a;
+}
+
 SkinnedModel boxes_model(const SceneState& scene) {
   SkinnedModel m;
   m.name = "scene";

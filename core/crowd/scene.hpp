@@ -80,6 +80,9 @@ struct Placement {
 // Where every agent is at time t (seconds).
 void place_agents(const SceneState& scene, double t, std::vector<Placement>& out);
 
+// Scene space <- character space for a placement: a character's feet at its origin, facing +Z.
+Affine placement_transform(const Placement& p);
+
 // A static model of boxes (occluders and ground), one identity joint and one pose, with
 // per-box colours (ground first, then the occluders).
 SkinnedModel boxes_model(const SceneState& scene);

@@ -197,5 +197,17 @@ TEST(CrowdApi, AClientThatStopsReadingDoesNotHoldUpOthers) {
   EXPECT_EQ(frames_waiting, 1);
 }
 
+TEST(CrowdApi, MissingModelFilesGiveAClearErrorAndTheServerGoesOn) {
+  TempDir empty;  // a data directory without models/
+  LiveServer s({"--crowd-max-subdivision", "0", "--data-dir", empty.path().string()});
+  WsClient ws(s.port(), "/api/v1/crowd/stream");
+  ws.send(kSmallOffice);
+  const json error = error_message(ws);
+  EXPECT_EQ(error["code"], "unavailable");
+  EXPECT_NE(error["message"].get<std::string>().find("CesiumMan.glb"), std::string::npos) << error.dump();
+  EXPECT_EQ(s.get("/healthz").status, 200);
+  EXPECT_EQ(s.get("/api/v1/crowd/scenes").status, 200);
+}
+
 }  // namespace
 }  // namespace tourmap::test

@@ -43,10 +43,11 @@ void print_stats(const SkinnedModel& m, LeafClustering method, const ClusterHier
   for (std::size_t n : h.stats.poses_per_animation) poses += n;
   for (std::size_t n : h.stats.representative_poses_per_animation) reps += n;
   std::printf("[ %s %s ] %zu triangles, %zu/%zu representative poses; %zu leaves, %zu clusters, stored/base %.2f, "
-              "%zu parents short of half; %.0f ms (poses %.0f, clustering %.0f, simplification %.0f); %.1f bytes/base triangle\n",
+              "%zu parents short of half; %.0f ms (poses %.0f, clustering %.0f, simplification %.0f, error %.0f); "
+              "%.1f bytes/base triangle\n",
               m.name.c_str(), method_name(method), m.triangle_count(), reps, poses, h.stats.leaf_clusters, h.stats.clusters,
               double(h.stats.stored_triangles) / double(h.stats.base_triangles), h.stats.clusters_short_of_half,
-              h.stats.total_ms, h.stats.pose_selection_ms, h.stats.clustering_ms, h.stats.simplification_ms,
+              h.stats.total_ms, h.stats.pose_selection_ms, h.stats.clustering_ms, h.stats.simplification_ms, h.stats.error_ms,
               double(serialize_hierarchy(h).size()) / double(h.stats.base_triangles));
 }
 

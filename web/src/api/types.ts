@@ -395,8 +395,8 @@ export interface CrowdScene {
   models: string[];
   /** Full-resolution triangles of all characters (null: not known before the scene is built). */
   triangles: number | null;
-  /** Whether (or how many) walls and furniture can hide people. */
-  occluders: boolean | number;
+  /** How many static occluder boxes (walls, booths, rocks) the scene has. */
+  occluders: number;
   bounds: CrowdBounds;
   default_camera: CrowdCamera;
   count: { default: number; min: number; max: number };

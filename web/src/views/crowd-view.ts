@@ -146,7 +146,7 @@ export class CrowdView implements View {
     this.controls.configure(modes, limits);
     this.stream.setMaxRate(limits.max_fps, limits.max_messages_per_s);
     this.picker.replaceChildren(
-      ...scenes.map((scene) => h('option', { value: scene.id }, `${scene.title} — ${scene.characters.toLocaleString('en')} people`)),
+      ...scenes.map((scene) => h('option', { value: scene.id }, `${scene.title} — ${scene.characters.toLocaleString('en')} ${scene.id === 'stampede' ? 'animals' : 'people'}`)),
     );
     this.picker.disabled = scenes.length === 0;
     if (this.shown) this.openWanted();
@@ -202,10 +202,10 @@ export class CrowdView implements View {
         'span',
         { class: 'crowd-counts' },
         [
-          `${scene.characters.toLocaleString('en')} people`,
+          `${scene.characters.toLocaleString('en')} ${scene.id === 'stampede' ? 'animals' : 'people'}`,
           `${scene.models.length} models`,
           scene.triangles ? `${formatCount(scene.triangles)} triangles at full resolution` : '',
-          scene.occluders ? 'walls and furniture hide people' : '',
+          scene.occluders ? `${Number(scene.occluders).toLocaleString('en')} occluders (walls, booths, rocks)` : '',
         ]
           .filter(Boolean)
           .join(' · '),
