@@ -42,7 +42,7 @@ void scene_frame_request(const PreparedScene& p, double t, const SceneCamera& ca
   out.mode = mode;
   out.poe = poe;
   out.heatmap = heatmap;
-  out.ground = false;  // the scene model has its own ground box
+  out.ground = true;  // an endless ground plane under the scene's own floor box
   crowd::place_agents(p.scene, t, scratch);
   out.instances.clear();
   out.instances.reserve(scratch.size() + 1);

@@ -110,7 +110,7 @@ void build_blocks(const SceneSpec& spec, SceneState& s, std::mt19937& rng) {
     a.phase_s = unit(rng) * 4;
     s.agents.push_back(std::move(a));
   }
-  s.ground = Box3(Vec3(0, -0.1f, 0), Vec3(width, 0, depth));
+  s.ground = Box3(Vec3(0, -0.1f, 0), Vec3(width, 0.02f, depth));  // 2 cm above the ground plane: no z-fighting
   const Vec3 centre(width / 2, 0, depth / 2);
   s.default_camera = {centre + Vec3(0, std::max(width, depth) * 0.45f, -depth * 0.85f), centre, 60};
 }
@@ -136,7 +136,7 @@ void build_open_field(const SceneSpec& spec, SceneState& s, std::mt19937& rng) {
     const float r = 1.f + 2.f * unit(rng);
     s.occluders.emplace_back(c - Vec3(r, 0, r), c + Vec3(r, 1.5f * r, r));
   }
-  s.ground = Box3(Vec3(0, -0.1f, 0), Vec3(width, 0, depth));
+  s.ground = Box3(Vec3(0, -0.1f, 0), Vec3(width, 0.02f, depth));  // 2 cm above the ground plane: no z-fighting
   const Vec3 centre(width / 2, 0, depth / 2);
   s.default_camera = {centre + Vec3(-width * 0.1f, depth * 0.35f, -depth * 0.9f), centre, 60};
 }

@@ -133,7 +133,7 @@ export class ControlsPanel {
       h('label', { class: 'check' }, this.heatmap, 'Heat map of the level of detail'),
       this.heatNote,
       h('label', { class: 'check' }, this.animate, 'Animate the crowd'),
-      h('label', { class: 'inline-field', for: 'crowd-count' }, 'People', this.count),
+      h('label', { class: 'inline-field', for: 'crowd-count' }, 'Characters', this.count),
       h('label', { class: 'inline-field', for: 'crowd-resolution' }, 'Resolution', this.resolution),
       slider('JPEG', this.quality, this.qualityOutput),
     );

@@ -120,7 +120,7 @@ export class StatsOverlay {
       { term: 'Clusters', value: formatCount(stats?.clusters.drawn), key: 'clusters-drawn', title: 'Clusters drawn' },
       { term: 'Culled', value: formatCount(stats?.clusters.frustum_culled), key: 'clusters-culled', title: 'Clusters outside the view (frustum-culled)' },
       { term: 'Occluded', value: formatCount(stats?.clusters.occluded), key: 'clusters-occluded', title: 'Clusters hidden behind others (occlusion-culled)' },
-      { term: 'People', value: formatCount(stats?.characters), key: 'characters' },
+      { term: 'Characters', value: formatCount(stats?.characters), key: 'characters' },
       { term: 'LOD cut', value: formatMs(stats?.ms.lod_cut), key: 'ms-lod-cut', title: 'Server: choosing the clusters to draw' },
       { term: 'Render', value: formatMs(stats?.ms.render), key: 'ms-render', title: 'Server: drawing the frame' },
       ...(stats?.ms.readback !== undefined
