@@ -70,6 +70,10 @@ int serve(const Config& config, const std::function<void(unsigned short)>& on_li
   CrowdStreamer crowd(crowd_assets, ctx.crowd_limits);
   register_routes(state, ctx, events, crowd);
   add_gauges(state);
+  state.metrics.add_gauge("tourmap_crowd_streams", "Open crowd streams.",
+                          [&crowd] { return static_cast<double>(crowd.streams()); });
+  state.metrics.add_gauge("tourmap_crowd_frames_sent", "Crowd frames sent since the start (grows).",
+                          [&crowd] { return static_cast<double>(crowd.frames_sent()); });
 
   tcp::acceptor acceptor(ioc);
   tcp::endpoint endpoint(net::ip::make_address(config.host), config.port);

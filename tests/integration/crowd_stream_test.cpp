@@ -105,6 +105,11 @@ TEST(CrowdApi, StreamSendsJpegFramesWithStatsAndFollowsTheCamera) {
   EXPECT_GT(moved.id, first.id);
   EXPECT_NE(moved.jpeg, first.jpeg);
 
+  // Operators see the stream in /metrics.
+  const std::string metrics = s.get("/metrics").body;
+  EXPECT_NE(metrics.find("tourmap_crowd_streams 1"), std::string::npos) << metrics.substr(0, 2000);
+  EXPECT_NE(metrics.find("tourmap_crowd_frames_sent 2"), std::string::npos);
+
   // Nothing changes and the animation is off: no more frames.
   EXPECT_THROW(ws.receive_message(1500ms), std::exception);
 }
