@@ -239,15 +239,21 @@ PreparedScene& CrowdStreamer::prepare(const api::CrowdView& view, const std::sha
   const auto* spec = crowd::find_scene_spec(view.scene);
   const int count = view.count > 0 ? view.count : spec->default_count;
   const std::string key = view.scene + "/" + std::to_string(count);
-  auto& slot = render_->scenes[key];
-  if (slot) return *slot;
+  // Each (scene, count) variant keeps its placement and occluder model (on the GPU, which has no
+  // removal): a bound on variants bounds the memory a client can make the server hold.
+  constexpr std::size_t kMaxSceneVariants = 32;
+  if (auto it = render_->scenes.find(key); it != render_->scenes.end()) return *it->second;
+  if (render_->scenes.size() >= kMaxSceneVariants)
+    throw std::runtime_error("the server keeps at most " + std::to_string(kMaxSceneVariants) +
+                             " scene variants (scene and count); use a scene's default count or one already in use");
   auto progress = [&session, &view](const std::string& stage, const std::string& model, int done, int total) {
     session->send_text(nlohmann::json{{"type", "progress"}, {"scene", view.scene}, {"stage", stage},
                                       {"model", model}, {"done", done}, {"total", total}}
                            .dump());
   };
-  slot = prepare_scene(assets_, *render_->renderer, render_->model_ids, *spec, count, progress);
-  return *slot;
+  // Inserted only once prepared: a failed preparation leaves nothing behind.
+  auto prepared = prepare_scene(assets_, *render_->renderer, render_->model_ids, *spec, count, progress);
+  return *(render_->scenes[key] = std::move(prepared));
 }
 
 namespace {
