@@ -209,7 +209,15 @@ void CrowdStreamer::run() {
     std::shared_ptr<WsSession> session;
     {
       std::unique_lock lock(mutex_);
-      wake_.wait_for(lock, std::chrono::milliseconds(5));
+      // Sleep until a message arrives when no stream wants frames; otherwise poll every 5 ms
+      // (a frame becomes due when its predecessor is written or the fps cap allows).
+      const auto wants_frames = [this] {
+        for (const auto& [key, st] : streams_)
+          if (st->has_view && !st->failed && (st->dirty || st->view.animate)) return true;
+        return false;
+      };
+      if (wants_frames()) wake_.wait_for(lock, std::chrono::milliseconds(5));
+      else wake_.wait(lock, [&] { return stopping_ || wants_frames(); });
       if (stopping_) break;
       const auto now = Clock::now();
       std::vector<std::pair<std::shared_ptr<Stream>, std::shared_ptr<WsSession>>> ready;
