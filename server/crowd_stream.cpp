@@ -331,6 +331,7 @@ void CrowdStreamer::render_one(Stream& st, const std::shared_ptr<WsSession>& ses
     const auto t2 = Clock::now();
     const std::uint32_t id = ++st.frame_id;
     const std::size_t bytes = jpeg.size();
+    ++frames_sent_;  // before the client can see the frame: /metrics never lags what it got
     session->send_binary(frame_header(id, view.width, view.height, started_ms) + jpeg);
     const double frame_ms = ms_between(t0, t2);
     if (previous != Clock::time_point{}) {
@@ -362,7 +363,6 @@ void CrowdStreamer::render_one(Stream& st, const std::shared_ptr<WsSession>& ses
                                       {"changed", changed},
                                       {"bytes", bytes}}
                            .dump());
-    ++frames_sent_;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "crowd: stream failed: %s\n", e.what());
     session->send_text(error_json("unavailable", std::string("cannot render the scene: ") + e.what()));

@@ -174,9 +174,11 @@ TEST(CrowdApi, StreamsBeyondTheCapAreRefusedClearly) {
 TEST(CrowdApi, AClientThatStopsReadingDoesNotHoldUpOthers) {
   LiveServer s(crowd_flags());
   WsClient slow(s.port(), "/api/v1/crowd/stream");
-  slow.send(R"({"type":"view","scene":"office","count":12,"width":640,"height":480,"quality":95,"animate":true})");
+  // Still first, so that exactly one frame exists when the client says it acknowledges frames.
+  slow.send(R"({"type":"view","scene":"office","count":12,"width":640,"height":480,"quality":95,"animate":false})");
   const Frame seen = next_frame(slow);
   slow.send(json{{"type", "ack"}, {"frame", seen.id}}.dump());  // this client acknowledges frames
+  slow.send(R"({"type":"view","animate":true})");
   // `slow` stops reading while its scene animates; another client must keep getting frames.
   WsClient other(s.port(), "/api/v1/crowd/stream");
   other.send(R"({"type":"view","scene":"office","count":12,"width":160,"height":120,"animate":true})");
