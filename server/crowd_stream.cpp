@@ -203,7 +203,6 @@ void CrowdStreamer::stop() {
 
 void CrowdStreamer::run() {
   const auto min_interval = std::chrono::microseconds(1'000'000 / std::max(1, limits_.max_fps));
-  std::size_t turn = 0;  // round robin over streams
   for (;;) {
     std::shared_ptr<Stream> due;
     std::shared_ptr<WsSession> session;
@@ -220,7 +219,7 @@ void CrowdStreamer::run() {
       else wake_.wait(lock, [&] { return stopping_ || wants_frames(); });
       if (stopping_) break;
       const auto now = Clock::now();
-      std::vector<std::pair<std::shared_ptr<Stream>, std::shared_ptr<WsSession>>> ready;
+      // Fairness: of the streams due now, the one that waited longest since its last frame.
       for (auto& [key, st] : streams_) {
         auto s = st->session.lock();
         if (!s || s->is_closed() || !st->has_view || st->failed) continue;
@@ -228,12 +227,12 @@ void CrowdStreamer::run() {
         if (s->binary_in_flight() > 0) continue;           // previous frame not written yet
         if (st->uses_acks && st->acked < st->frame_id.load()) continue;  // nor acknowledged
         if (now - st->last_frame < min_interval) continue;  // fps cap
-        ready.emplace_back(st, s);
+        if (!due || st->last_frame < due->last_frame) {
+          due = st;
+          session = std::move(s);
+        }
       }
-      if (ready.empty()) continue;
-      auto& pick = ready[turn++ % ready.size()];
-      due = pick.first;
-      session = pick.second;
+      if (!due) continue;
     }
     render_one(*due, session);
   }
