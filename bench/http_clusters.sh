@@ -11,7 +11,7 @@ tmp="$(mktemp -d)"
 trap 'kill "$pid" 2>/dev/null || true; rm -rf "$tmp"' EXIT
 "$bin" import manifest "$here/scripts/sample-data.json" --data-dir "${TOURMAP_DATA_DIR:-$here/../shared/data}" \
   --db "$tmp/t.db" >/dev/null
-"$bin" serve --db "$tmp/t.db" --port 0 --access-log off >"$tmp/out" 2>&1 &
+"$bin" serve --db "$tmp/t.db" --port 0 --access-log off --rate-limit 0 >"$tmp/out" 2>&1 &
 pid=$!
 for _ in $(seq 50); do grep -q "listening on" "$tmp/out" && break; sleep 0.1; done
 port="$(sed -n 's/.*listening on http:\/\/[^:]*:\([0-9]*\).*/\1/p' "$tmp/out" | head -1)"

@@ -1,6 +1,7 @@
 #include "cli.hpp"
 
 #include "config.hpp"
+#include "cors.hpp"
 #include "routes_table.hpp"
 #include "server.hpp"
 
@@ -13,6 +14,7 @@
 
 #include <boost/program_options.hpp>
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -99,12 +101,29 @@ int cmd_serve(const std::vector<std::string>& args) {
        "seconds to finish in-flight requests on SIGINT/SIGTERM")
       ("max-ws", po::value(&c.max_ws_connections)->default_value(c.max_ws_connections),
        "concurrent WebSocket connections")
+      ("rate-limit", po::value(&c.rate_limit)->default_value(c.rate_limit),
+       "requests per second per client address, beyond the burst (429 with Retry-After; 0: no limit)")
+      ("rate-burst", po::value(&c.rate_burst)->default_value(c.rate_burst),
+       "requests a client address may make at once before --rate-limit applies")
+      ("cors-origins", po::value(&c.cors_origins)->default_value(c.cors_origins),
+       "comma-separated origins allowed cross-origin requests ('*': any; empty: no CORS headers)")
       ("access-log", po::value(&c.access_log)->default_value(c.access_log), "'-' (stdout), 'off', or a file");
   desc.add(db_options(c));
   auto vm = parse(desc, {}, args);
   if (vm.count("help")) {
     std::cout << desc << "\n";
     return 0;
+  }
+  if (!(c.rate_limit >= 0.0) || !std::isfinite(c.rate_limit) ||
+      (c.rate_limit > 0.0 && (!(c.rate_burst >= 1.0) || !std::isfinite(c.rate_burst)))) {
+    std::fprintf(stderr, "tourmap serve: --rate-limit must be 0 (off) or positive, with --rate-burst at least 1\n");
+    return 2;
+  }
+  try {
+    CorsPolicy check(c.cors_origins);
+  } catch (const std::invalid_argument& e) {
+    std::fprintf(stderr, "tourmap serve: --cors-origins: %s\n", e.what());
+    return 2;
   }
   if (c.compute_threads == 0) c.compute_threads = std::max(1u, std::thread::hardware_concurrency());
   if (c.io_threads == 0) c.io_threads = 1;

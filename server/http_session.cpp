@@ -72,6 +72,7 @@ void HttpSession::run() {
 
 void HttpSession::read_header() {
   if (state_.stopping) return close();
+  origin_.clear();
   parser_.emplace();
   parser_->body_limit(state_.config.max_body_bytes);
   parser_->header_limit(static_cast<std::uint32_t>(state_.config.max_header_bytes));
@@ -112,6 +113,8 @@ void HttpSession::on_read(beast::error_code ec) {
   if (ec) return fail_read(400, "bad_request", "malformed HTTP request: " + ec.message());
 
   Request req = parser_->release();
+  origin_ = std::string(req[http::field::origin]);
+  if (refuse_if_rate_limited(req)) return;
   if (beast::websocket::is_upgrade(req)) {
     auto target = parse_target(req.target());
     auto it = target ? state_.ws_endpoints.find(target->path) : state_.ws_endpoints.end();
@@ -132,12 +135,44 @@ void HttpSession::on_read(beast::error_code ec) {
   handle(std::move(req));
 }
 
+// Every request but the health and metrics reads takes a token from its client address's
+// bucket first; without one it gets 429 with Retry-After, before any routing or upgrade.
+bool HttpSession::refuse_if_rate_limited(const Request& req) {
+  if (!state_.rate_limiter.enabled()) return false;
+  const std::string_view target = req.target();
+  const std::string_view path = target.substr(0, target.find('?'));
+  if ((req.method() == http::verb::get || req.method() == http::verb::head) && (path == "/healthz" || path == "/metrics"))
+    return false;
+  auto decision = state_.rate_limiter.acquire(remote_, Clock::now());
+  if (decision.allowed) return false;
+  const long retry_s = RateLimiter::retry_after_header(decision.retry_after_s);
+  busy_ = true;
+  method_ = std::string(req.method_string());
+  target_ = std::string(target);
+  char limits[96];
+  std::snprintf(limits, sizeof limits, "%g requests per second, bursts of %g", state_.rate_limiter.options().rate,
+                state_.rate_limiter.options().burst);
+  auto r = api::error_response(429, "rate_limited",
+                               "too many requests from this address (" + std::string(limits) + "); retry in " +
+                                   std::to_string(retry_s) + " s");
+  r.headers.emplace_back("Retry-After", std::to_string(retry_s));
+  auto facts = facts_of(req);
+  if (beast::websocket::is_upgrade(req)) facts.keep_alive = false;  // a refused upgrade ends the connection
+  send(finish_response(std::move(r), facts, state_.config), "rate_limited");
+  return true;
+}
+
 void HttpSession::handle(Request&& req) {
   ++state_.in_flight;
   counted_ = true;
   method_ = std::string(req.method_string());
   target_ = std::string(req.target());
   auto facts = facts_of(req);
+  // A CORS preflight is answered here for any path (the request it announces is routed when
+  // it comes). With CORS off, OPTIONS goes to the router like any other method.
+  if (state_.cors.enabled() && req.method() == http::verb::options && !origin_.empty() &&
+      req.count(http::field::access_control_request_method))
+    return answer_preflight(facts);
   auto target = parse_target(req.target());
   if (!target) {
     route_label_ = "invalid";
@@ -204,8 +239,38 @@ void HttpSession::handle(Request&& req) {
   }
 }
 
+void HttpSession::answer_preflight(const RequestFacts& facts) {
+  route_label_ = "preflight";
+  if (!state_.cors.allows(origin_))
+    return send(finish_response(api::error_response(403, "origin_not_allowed",
+                                                    "cross-origin requests from " + origin_ + " are not allowed",
+                                                    "Origin"),
+                                facts, state_.config),
+                route_label_);
+  Response res{http::status::no_content, facts.version};
+  res.set(http::field::server, "tourmap");
+  res.set("X-Content-Type-Options", "nosniff");
+  res.set(http::field::access_control_allow_methods, CorsPolicy::kAllowMethods);
+  res.set(http::field::access_control_allow_headers, CorsPolicy::kAllowHeaders);
+  res.set(http::field::access_control_max_age, std::to_string(CorsPolicy::kMaxAgeS));
+  res.keep_alive(facts.keep_alive);
+  send(std::move(res), route_label_);  // send() adds Allow-Origin and Vary
+}
+
+// With CORS on, every response varies by Origin (a cache must not hand one origin's answer
+// to another); an allowed origin gets Access-Control-Allow-Origin, a refused one nothing.
+void HttpSession::add_cors_headers(Response& res) const {
+  if (!state_.cors.enabled()) return;
+  const std::string vary(res[http::field::vary]);
+  res.set(http::field::vary, vary.empty() ? std::string("Origin") : vary + ", Origin");
+  if (!state_.cors.allows(origin_)) return;
+  res.set(http::field::access_control_allow_origin, origin_);
+  res.set(http::field::access_control_expose_headers, CorsPolicy::kExposeHeaders);
+}
+
 void HttpSession::send(Response&& res, const std::string& route_label) {
   route_label_ = route_label;
+  add_cors_headers(res);
   bool close = res.need_eof() || state_.stopping;
   if (close) res.keep_alive(false);
   response_ = std::make_shared<Response>(std::move(res));

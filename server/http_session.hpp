@@ -3,6 +3,7 @@
 // the request timeout, with size limits), routes them, runs compute routes on the pool, writes
 // responses, and hands WebSocket upgrades to WsSession.
 
+#include "respond.hpp"
 #include "server_state.hpp"
 
 #include <boost/asio/ip/tcp.hpp>
@@ -28,7 +29,10 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
   void read_header();
   void on_header(boost::beast::error_code ec);
   void on_read(boost::beast::error_code ec);
+  bool refuse_if_rate_limited(const Request& req);
   void handle(Request&& req);
+  void answer_preflight(const RequestFacts& facts);
+  void add_cors_headers(Response& res) const;
   void run_compute(const api::Route& route, api::Request&& areq);
   void send(Response&& res, const std::string& route_label);
   void on_write(bool close, boost::beast::error_code ec, std::size_t bytes);
@@ -48,6 +52,7 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
   bool counted_ = false;  // counted in state_.in_flight
   std::chrono::steady_clock::time_point started_;
   std::string method_, target_, route_label_;
+  std::string origin_;  // the request's Origin header (CORS)
   std::shared_ptr<Response> response_;
 };
 

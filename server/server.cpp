@@ -39,6 +39,12 @@ void add_gauges(ServerState& state) {
                           [&state] { return static_cast<double>(state.pool.queued()); });
   state.metrics.add_gauge("tourmap_compute_busy", "Compute threads running a request.",
                           [&state] { return static_cast<double>(state.pool.busy()); });
+  state.metrics.add_gauge("tourmap_rate_limit_clients",
+                          "Client addresses the rate limiter tracks (requests refused: status 429, route rate_limited).",
+                          [&state] {
+                            state.rate_limiter.evict_idle(std::chrono::steady_clock::now());
+                            return static_cast<double>(state.rate_limiter.tracked());
+                          });
 }
 
 void accept_loop(tcp::acceptor& acceptor, net::io_context& ioc, ServerState& state) {

@@ -5,7 +5,9 @@
 #include "access_log.hpp"
 #include "compute_pool.hpp"
 #include "config.hpp"
+#include "cors.hpp"
 #include "metrics.hpp"
+#include "rate_limiter.hpp"
 #include "static_files.hpp"
 
 #include "api/router.hpp"
@@ -66,7 +68,16 @@ struct ServerState {
       : config(std::move(cfg)),
         pool(config.compute_threads, config.compute_queue),
         access_log(config.access_log),
-        static_files(config.web_root) {}
+        static_files(config.web_root),
+        rate_limiter(rate_limiter_options(config)),
+        cors(config.cors_origins) {}
+
+  static RateLimiter::Options rate_limiter_options(const Config& c) {
+    RateLimiter::Options o;
+    o.rate = c.rate_limit;
+    o.burst = c.rate_burst;
+    return o;
+  }
 
   Config config;
   api::Router router;
@@ -77,6 +88,8 @@ struct ServerState {
   StaticFiles static_files;
   SessionRegistry http_sessions;
   SessionRegistry ws_sessions;
+  RateLimiter rate_limiter;  // per client address, before routing
+  CorsPolicy cors;
   std::atomic<bool> stopping{false};
   std::atomic<long> in_flight{0};  // requests read and not yet answered
 };
