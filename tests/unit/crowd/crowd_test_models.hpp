@@ -4,6 +4,7 @@
 
 #include "crowd/lod_cut.hpp"
 #include "crowd/skinned_model.hpp"
+#include "render/camera.hpp"
 
 #include <Eigen/Geometry>
 
@@ -127,38 +128,13 @@ inline std::vector<std::vector<int>> all_poses(const SkinnedModel& m) {
   return reps;
 }
 
-// A perspective camera looking from `eye` at `target` (+Y up), OpenGL clip conventions.
+// A perspective camera looking from `eye` at `target` (+Y up, +Z when looking straight down),
+// OpenGL clip conventions: the renderer's own camera.
 inline CameraView look_at(const Vec3& eye, const Vec3& target, int width = 1280, int height = 720,
                           float fov_y_rad = 1.0471976f, float near_m = 0.1f, float far_m = 1000.f) {
   const Vec3 f = (target - eye).normalized();
-  Vec3 up = Vec3::UnitY();
-  if (std::abs(f.dot(up)) > 0.99f) up = Vec3::UnitZ();
-  const Vec3 s = f.cross(up).normalized();
-  const Vec3 u = s.cross(f);
-  Eigen::Matrix4f view = Eigen::Matrix4f::Identity();
-  view.block<1, 3>(0, 0) = s.transpose();
-  view.block<1, 3>(1, 0) = u.transpose();
-  view.block<1, 3>(2, 0) = -f.transpose();
-  view(0, 3) = -s.dot(eye);
-  view(1, 3) = -u.dot(eye);
-  view(2, 3) = f.dot(eye);
-  const float aspect = static_cast<float>(width) / static_cast<float>(height);
-  const float t = 1.f / std::tan(fov_y_rad / 2);
-  Eigen::Matrix4f proj = Eigen::Matrix4f::Zero();
-  proj(0, 0) = t / aspect;
-  proj(1, 1) = t;
-  proj(2, 2) = -(far_m + near_m) / (far_m - near_m);
-  proj(2, 3) = -2 * far_m * near_m / (far_m - near_m);
-  proj(3, 2) = -1;
-  CameraView v;
-  v.view_proj = proj * view;
-  v.eye = eye;
-  v.width = width;
-  v.height = height;
-  v.fov_y_rad = fov_y_rad;
-  v.near_m = near_m;
-  v.far_m = far_m;
-  return v;
+  const Vec3 up = std::abs(f.dot(Vec3::UnitY())) > 0.99f ? Vec3::UnitZ() : Vec3::UnitY();
+  return render::make_camera_view(eye, target, up, fov_y_rad, width, height, near_m, far_m);
 }
 
 }  // namespace tourmap::crowd::test_models
