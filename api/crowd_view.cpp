@@ -17,7 +17,7 @@ double number(const nlohmann::json& msg, const char* field, double lo, double hi
   if (!v.is_number()) bad(field, std::string(field) + " must be a number");
   const double x = v.get<double>();
   if (!std::isfinite(x) || x < lo || x > hi)
-    bad(field, std::string(field) + " must be between " + std::to_string(lo) + " and " + std::to_string(hi));
+    bad(field, std::string(field) + " must be between " + nlohmann::json(lo).dump() + " and " + nlohmann::json(hi).dump());
   return x;
 }
 

@@ -37,7 +37,10 @@ std::unique_ptr<PreparedScene> prepare_scene(api::CrowdAssets& assets, render::C
 
 void scene_frame_request(const PreparedScene& p, double t, const SceneCamera& camera, render::RenderMode mode,
                          float poe, bool heatmap, render::FrameRequest& out, std::vector<crowd::Placement>& scratch) {
-  out.camera = render::make_camera_view(camera.eye, camera.target, crowd::Vec3::UnitY(),
+  // +Y up, except when looking (nearly) straight up or down: a top view is a view users orbit to.
+  const crowd::Vec3 forward = (camera.target - camera.eye).normalized();
+  const crowd::Vec3 up = std::abs(forward.y()) > 0.999f ? crowd::Vec3::UnitZ() : crowd::Vec3::UnitY();
+  out.camera = render::make_camera_view(camera.eye, camera.target, up,
                                         camera.fov_deg * 3.14159265f / 180.f, camera.width, camera.height, 0.1f, 2000.f);
   out.mode = mode;
   out.poe = poe;

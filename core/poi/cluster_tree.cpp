@@ -61,9 +61,9 @@ void merge_cycles(ClusterTree& t, const std::vector<std::uint32_t>& clusters,
 
 // Groups of more than k clusters with identical centres would see only each other's first k in
 // the kd-tree and mostly stay alone: such a group merges outright (its cycle cost is 0 anyway).
-// The other clusters go to `todo`.
+// The other clusters go to `pending`.
 void merge_identical(ClusterTree& t, const std::vector<std::uint32_t>& clusters, std::size_t k, std::uint32_t level,
-                     std::vector<std::uint32_t>& next, std::vector<std::uint32_t>& todo) {
+                     std::vector<std::uint32_t>& next, std::vector<std::uint32_t>& pending) {
   std::vector<std::uint32_t> order = clusters;
   std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
     const geo::XY p = t.nodes[a].center, q = t.nodes[b].center;
@@ -77,7 +77,7 @@ void merge_identical(ClusterTree& t, const std::vector<std::uint32_t>& clusters,
     if (b - a > k) {
       next.push_back(make_node(t, std::span(order).subspan(a, b - a), level));
     } else {
-      todo.insert(todo.end(), order.begin() + static_cast<std::ptrdiff_t>(a),
+      pending.insert(pending.end(), order.begin() + static_cast<std::ptrdiff_t>(a),
                   order.begin() + static_cast<std::ptrdiff_t>(b));
     }
   }
@@ -130,32 +130,32 @@ ClusterTree build_cluster_tree(const std::vector<ClusterPoint>& points, const Cl
   }
   if (n == 0) return t;
 
-  std::vector<std::uint32_t> current(n), next, todo;
+  std::vector<std::uint32_t> current(n), next, pending;
   for (std::uint32_t i = 0; i < n; ++i) current[i] = i;
   std::vector<geo::XY> centers;
   // Step (c): one round per level until one root remains; every round merges at least one pair.
   for (std::uint32_t level = 1; current.size() > 1; ++level) {
     next.clear();
-    todo.clear();
+    pending.clear();
     if (current.size() > options.dense_limit) {
-      merge_identical(t, current, std::max<std::size_t>(options.k, 1), level, next, todo);
+      merge_identical(t, current, std::max<std::size_t>(options.k, 1), level, next, pending);
     } else {
-      todo = current;
+      pending = current;
     }
 
-    if (todo.size() >= 2) {
-      centers.resize(todo.size());
-      for (std::size_t i = 0; i < todo.size(); ++i) centers[i] = t.nodes[todo[i]].center;
-      const CycleCover cover = todo.size() <= options.dense_limit ? min_cycle_cover_dense(centers)
+    if (pending.size() >= 2) {
+      centers.resize(pending.size());
+      for (std::size_t i = 0; i < pending.size(); ++i) centers[i] = t.nodes[pending[i]].center;
+      const CycleCover cover = pending.size() <= options.dense_limit ? min_cycle_cover_dense(centers)
                                                                   : min_cycle_cover_sparse(centers, options.k);
       const std::size_t before = next.size();
-      merge_cycles(t, todo, cover.successor, level, next);
-      if (next.size() - before == todo.size() && next.size() == current.size()) {
+      merge_cycles(t, pending, cover.successor, level, next);
+      if (next.size() - before == pending.size() && next.size() == current.size()) {
         next.resize(before);
-        merge_nearest_pairs(t, todo, centers, level, next);
+        merge_nearest_pairs(t, pending, centers, level, next);
       }
     } else {
-      next.insert(next.end(), todo.begin(), todo.end());
+      next.insert(next.end(), pending.begin(), pending.end());
     }
     current.swap(next);
   }

@@ -105,10 +105,15 @@ TEST(CrowdApi, StreamSendsJpegFramesWithStatsAndFollowsTheCamera) {
   EXPECT_GT(moved.id, first.id);
   EXPECT_NE(moved.jpeg, first.jpeg);
 
+  // Straight down (a top view, where +Y up is parallel to the view direction) renders too.
+  ws.send(R"({"type":"view","camera":{"eye":[20,40,20],"target":[20,0,20]}})");
+  Frame top = next_frame(ws);
+  EXPECT_NE(top.jpeg, moved.jpeg);
+
   // Operators see the stream in /metrics.
   const std::string metrics = s.get("/metrics").body;
   EXPECT_NE(metrics.find("tourmap_crowd_streams 1"), std::string::npos) << metrics.substr(0, 2000);
-  EXPECT_NE(metrics.find("tourmap_crowd_frames_sent 2"), std::string::npos);
+  EXPECT_NE(metrics.find("tourmap_crowd_frames_sent 3"), std::string::npos);
 
   // Nothing changes and the animation is off: no more frames.
   EXPECT_THROW(ws.receive_message(1500ms), std::exception);
