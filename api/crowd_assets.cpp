@@ -4,13 +4,14 @@
 #include "crowd/hierarchy_build.hpp"
 #include "crowd/hierarchy_io.hpp"
 #include "crowd/subdivide.hpp"
+#include "load/file.hpp"
 #include "store/repo.hpp"
+#include "util/hash.hpp"
 
 #include <algorithm>
 #include <cctype>
 #include <chrono>
 #include <cstdio>
-#include <fstream>
 #include <sstream>
 
 namespace tourmap::api {
@@ -22,18 +23,13 @@ double ms_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
 }
 
+// The model file's content hash: a changed file never reuses a cached hierarchy.
 std::string file_hash(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw std::runtime_error(path + ": cannot open the model file");
-  std::uint64_t h = 1469598103934665603ull;  // FNV-1a 64
-  char buf[1 << 16];
-  while (in) {
-    in.read(buf, sizeof buf);
-    for (std::streamsize i = 0; i < in.gcount(); ++i) h = (h ^ static_cast<unsigned char>(buf[i])) * 1099511628211ull;
+  try {
+    return util::hex64(util::fnv1a64(load::read_file(path)));
+  } catch (const std::exception&) {
+    throw std::runtime_error(path + ": cannot open the model file");
   }
-  char hex[17];
-  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
-  return hex;
 }
 
 std::string lower(std::string s) {

@@ -1,5 +1,7 @@
 #include "crowd/weld.hpp"
 
+#include "util/hash.hpp"
+
 #include <algorithm>
 #include <cstring>
 #include <stdexcept>
@@ -19,11 +21,7 @@ static_assert(sizeof(WeldKey) == 36, "WeldKey must have no padding bytes");
 
 struct WeldKeyHash {
   std::size_t operator()(const WeldKey& k) const {
-    // FNV-1a over the bytes.
-    const auto* p = reinterpret_cast<const unsigned char*>(&k);
-    std::size_t h = 1469598103934665603ull;
-    for (std::size_t i = 0; i < sizeof(WeldKey); ++i) h = (h ^ p[i]) * 1099511628211ull;
-    return h;
+    return static_cast<std::size_t>(util::fnv1a64(std::string_view(reinterpret_cast<const char*>(&k), sizeof(WeldKey))));
   }
 };
 
