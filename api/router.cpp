@@ -17,9 +17,18 @@ std::vector<std::string> split_path(const std::string& path) {
 }
 
 void Router::add(std::string method, std::string pattern, Exec exec, Handler handler) {
-  Route r{std::move(method), std::move(pattern), exec, std::move(handler), {}};
+  Route r;
+  r.method = std::move(method);
+  r.pattern = std::move(pattern);
+  r.exec = exec;
+  r.handler = std::move(handler);
   r.segments = split_path(r.pattern);
   routes_.push_back(std::move(r));
+}
+
+void Router::add_write(std::string method, std::string pattern, Exec exec, Handler handler) {
+  add(std::move(method), std::move(pattern), exec, std::move(handler));
+  routes_.back().access = Access::api_key;
 }
 
 namespace {

@@ -1,6 +1,7 @@
 #pragma once
 // Routes: method + path pattern with {name} segments, e.g. /api/v1/cities/{id}/metro.
-// Each route says where it runs: on the IO threads (cheap, bounded work) or on the compute pool.
+// Each route says where it runs: on the IO threads (cheap, bounded work) or on the compute pool,
+// and who may call it: anyone (reads) or holders of an API key (writes).
 
 #include "http.hpp"
 
@@ -12,6 +13,7 @@
 namespace tourmap::api {
 
 enum class Exec { io, compute };
+enum class Access { open, api_key };  // api_key: checked by the server before the body is read
 
 using Handler = std::function<Response(Request&)>;
 
@@ -21,6 +23,7 @@ struct Route {
   Exec exec = Exec::compute;
   Handler handler;
   std::vector<std::string> segments;  // pattern split at '/'; "{x}" marks a parameter
+  Access access = Access::open;
 };
 
 struct RouteMatch {
@@ -31,6 +34,8 @@ struct RouteMatch {
 class Router {
  public:
   void add(std::string method, std::string pattern, Exec exec, Handler handler);
+  // A write: only requests with a valid API key reach the handler.
+  void add_write(std::string method, std::string pattern, Exec exec, Handler handler);
   // Finds the route and fills `request.params`.
   RouteMatch match(Request& request) const;
   const std::vector<Route>& routes() const { return routes_; }

@@ -35,6 +35,8 @@ void add_road_routes(Router& router, AppContext& ctx);
 void add_deform_routes(Router& router, AppContext& ctx);
 void add_metro_routes(Router& router, AppContext& ctx);
 void add_crowd_routes(Router& router, AppContext& ctx);
+// Imports, deletes and cache purge: need an API key (Access::api_key).
+void add_write_routes(Router& router, AppContext& ctx);
 
 inline void add_api_routes(Router& router, AppContext& ctx) {
   add_system_routes(router, ctx);
@@ -43,6 +45,7 @@ inline void add_api_routes(Router& router, AppContext& ctx) {
   add_deform_routes(router, ctx);
   add_metro_routes(router, ctx);
   add_crowd_routes(router, ctx);
+  add_write_routes(router, ctx);
 }
 
 }  // namespace tourmap::api

@@ -1,7 +1,9 @@
 #include "cli.hpp"
+#include "cli_options.hpp"
 
 #include "config.hpp"
 #include "cors.hpp"
+#include "trusted_proxies.hpp"
 #include "routes_table.hpp"
 #include "server.hpp"
 
@@ -29,28 +31,8 @@ namespace tourmap::server {
 
 namespace po = boost::program_options;
 
-namespace {
-
-constexpr const char* kUsage =
-    "tourmap: interactive tourist maps (map deformation, metro maps, crowd rendering)\n"
-    "\n"
-    "usage: tourmap <command> [options]\n"
-    "\n"
-    "commands:\n"
-    "  serve                     run the HTTP/WebSocket server (default port 8080)\n"
-    "  migrate                   create or upgrade the database schema\n"
-    "  import manifest FILE      import every city and road network a manifest lists\n"
-    "  import metro FILE...      import a city's metro network (--city, --name, --format)\n"
-    "  import pois FILE          import a city's POIs (--city)\n"
-    "  import roads FILE         import an OSM road extract (--id, --name)\n"
-    "  routes                    list the HTTP and WebSocket routes the server registers\n"
-    "\n"
-    "Run `tourmap <command> --help` for the options of a command. Every option can also be set\n"
-    "with an environment variable: --db is TOURMAP_DB, --port is TOURMAP_PORT, and so on.\n";
-
-// TOURMAP_DATA_DIR -> data-dir for options the command knows.
-po::variables_map parse(const po::options_description& desc, const po::positional_options_description& pos,
-                        const std::vector<std::string>& args) {
+po::variables_map parse_options(const po::options_description& desc, const po::positional_options_description& pos,
+                                const std::vector<std::string>& args) {
   po::variables_map vm;
   po::store(po::command_line_parser(args).options(desc).positional(pos).run(), vm);
   po::store(po::parse_environment(desc,
@@ -70,6 +52,26 @@ po::options_description db_options(Config& c) {
   d.add_options()("db", po::value(&c.db_path)->default_value(c.db_path), "SQLite database file (created if missing)");
   return d;
 }
+
+namespace {
+
+constexpr const char* kUsage =
+    "tourmap: interactive tourist maps (map deformation, metro maps, crowd rendering)\n"
+    "\n"
+    "usage: tourmap <command> [options]\n"
+    "\n"
+    "commands:\n"
+    "  serve                     run the HTTP/WebSocket server (default port 8080)\n"
+    "  migrate                   create or upgrade the database schema\n"
+    "  import manifest FILE      import every city and road network a manifest lists\n"
+    "  import metro FILE...      import a city's metro network (--city, --name, --format)\n"
+    "  import pois FILE          import a city's POIs (--city)\n"
+    "  import roads FILE         import an OSM road extract (--id, --name)\n"
+    "  keys create|list|revoke   API keys for the write endpoints (imports, deletes, cache purge)\n"
+    "  routes                    list the HTTP and WebSocket routes the server registers\n"
+    "\n"
+    "Run `tourmap <command> --help` for the options of a command. Every option can also be set\n"
+    "with an environment variable: --db is TOURMAP_DB, --port is TOURMAP_PORT, and so on.\n";
 
 int cmd_serve(const std::vector<std::string>& args) {
   Config c = default_config();
@@ -92,6 +94,8 @@ int cmd_serve(const std::vector<std::string>& args) {
       ("compute-deadline", po::value(&c.compute_deadline_s)->default_value(c.compute_deadline_s),
        "seconds a request may wait for a compute thread")
       ("max-body", po::value(&c.max_body_bytes)->default_value(c.max_body_bytes), "request body limit (bytes)")
+      ("max-upload", po::value(&c.max_upload_bytes)->default_value(c.max_upload_bytes),
+       "body limit of write requests with a valid API key, e.g. imports (bytes)")
       ("max-header", po::value(&c.max_header_bytes)->default_value(c.max_header_bytes), "request header limit (bytes)")
       ("request-timeout", po::value(&c.request_timeout_s)->default_value(c.request_timeout_s),
        "seconds to receive a request / send a response")
@@ -107,9 +111,11 @@ int cmd_serve(const std::vector<std::string>& args) {
        "requests a client address may make at once before --rate-limit applies")
       ("cors-origins", po::value(&c.cors_origins)->default_value(c.cors_origins),
        "comma-separated origins allowed cross-origin requests ('*': any; empty: no CORS headers)")
+      ("trusted-proxies", po::value(&c.trusted_proxies)->default_value(c.trusted_proxies),
+       "comma-separated proxy addresses/CIDRs whose X-Forwarded-For names the client (rate limit, log)")
       ("access-log", po::value(&c.access_log)->default_value(c.access_log), "'-' (stdout), 'off', or a file");
   desc.add(db_options(c));
-  auto vm = parse(desc, {}, args);
+  auto vm = parse_options(desc, {}, args);
   if (vm.count("help")) {
     std::cout << desc << "\n";
     return 0;
@@ -125,6 +131,12 @@ int cmd_serve(const std::vector<std::string>& args) {
     std::fprintf(stderr, "tourmap serve: --cors-origins: %s\n", e.what());
     return 2;
   }
+  try {
+    TrustedProxies check(c.trusted_proxies);
+  } catch (const std::invalid_argument& e) {
+    std::fprintf(stderr, "tourmap serve: --trusted-proxies: %s\n", e.what());
+    return 2;
+  }
   if (c.compute_threads == 0) c.compute_threads = std::max(1u, std::thread::hardware_concurrency());
   if (c.io_threads == 0) c.io_threads = 1;
   if (!std::filesystem::is_directory(c.web_root))
@@ -137,7 +149,7 @@ int cmd_migrate(const std::vector<std::string>& args) {
   po::options_description desc("tourmap migrate options");
   desc.add_options()("help,h", "show this help");
   desc.add(db_options(c));
-  auto vm = parse(desc, {}, args);
+  auto vm = parse_options(desc, {}, args);
   if (vm.count("help")) {
     std::cout << desc << "\n";
     return 0;
@@ -200,7 +212,7 @@ int cmd_import(const std::vector<std::string>& args) {
   pos.add("file", -1);
   po::variables_map vm;
   try {
-    vm = parse(desc, pos, rest);
+    vm = parse_options(desc, pos, rest);
   } catch (const po::error& e) {
     std::fprintf(stderr, "tourmap import %s: %s\n", what.c_str(), e.what());
     return 2;
@@ -260,6 +272,7 @@ int run_cli(int argc, char** argv) {
     if (cmd == "serve") return cmd_serve(rest);
     if (cmd == "migrate") return cmd_migrate(rest);
     if (cmd == "import") return cmd_import(rest);
+    if (cmd == "keys") return cmd_keys(rest);
     if (cmd == "routes") return cmd_routes();
     if (cmd == "solve-mip" && rest.size() == 2)  // internal: the layout service's MIP child process
       return api::solve_mip_from_stdin(std::stod(rest[0]), std::stod(rest[1]));

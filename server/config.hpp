@@ -18,6 +18,7 @@ struct Config {
   std::size_t compute_queue = 256;         // queued compute requests before 503
   double compute_deadline_s = 30.0;        // a request still queued after this gets 503
   std::size_t max_body_bytes = 1 << 20;    // 413 beyond
+  std::size_t max_upload_bytes = 64 << 20; // bodies of write requests with a valid API key (imports)
   std::size_t max_header_bytes = 16 << 10; // 431 beyond
   double request_timeout_s = 30.0;         // to read a request once it started
   double idle_timeout_s = 60.0;            // keep-alive connection without a request
@@ -30,6 +31,7 @@ struct Config {
   double rate_limit = 200.0;              // requests per second per client address (0: no limit)
   double rate_burst = 400.0;              // requests a client may make at once (token bucket size)
   std::string cors_origins;               // comma-separated allowed origins, "*" any; empty: no CORS
+  std::string trusted_proxies;            // comma-separated addresses/CIDRs whose X-Forwarded-For is believed
 };
 
 // Built-in defaults for paths (from the build: the source's ../shared/data and build/web).

@@ -12,7 +12,7 @@ namespace tourmap::server {
 
 class CorsPolicy {
  public:
-  static constexpr const char* kAllowMethods = "GET, POST, OPTIONS";
+  static constexpr const char* kAllowMethods = "GET, POST, PUT, DELETE, OPTIONS";
   static constexpr const char* kAllowHeaders = "Content-Type, Authorization, X-API-Key, If-None-Match";
   // Response headers a cross-origin script may read besides the safelisted ones.
   static constexpr const char* kExposeHeaders = "ETag, Retry-After, X-Result-Cache";

@@ -64,11 +64,15 @@ void EventHub::poll() {
   if (stopped_) return;
   try {
     auto db = db_.acquire();
-    auto st = db->prepare("SELECT COALESCE(MAX(id), 0) FROM imports");
+    // The newest import, and the number of cities and road networks (a delete changes those).
+    auto st = db->prepare(
+        "SELECT COALESCE(MAX(id), 0), (SELECT COUNT(*) FROM cities), (SELECT COUNT(*) FROM road_networks) "
+        "FROM imports");
     st.step();
-    auto latest = st.int64(0);
-    if (last_import_ >= 0 && latest != last_import_) broadcast(current_event("catalog"));
-    last_import_ = latest;
+    const CatalogStamp latest{st.int64(0), st.int64(1), st.int64(2)};
+    if (last_import_ >= 0 && latest != last_) broadcast(current_event("catalog"));
+    last_ = latest;
+    last_import_ = latest.last_import;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "events: cannot read the catalog version: %s\n", e.what());
   }

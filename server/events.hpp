@@ -1,6 +1,6 @@
 #pragma once
 // WS /api/v1/events: tells connected clients when the catalog changes (a city or road network
-// was imported, by this process or another one writing the same database), so a client can
+// was imported or deleted, by this process or another one writing the same database), so a client can
 // refresh without polling. The store is polled every `interval` for the newest import.
 
 #include "server_state.hpp"
@@ -34,7 +34,12 @@ class EventHub {
   std::chrono::milliseconds interval_;
   std::mutex mutex_;
   std::map<const WsSession*, std::weak_ptr<WsSession>> subscribers_;
-  std::int64_t last_import_ = -1;
+  struct CatalogStamp {
+    std::int64_t last_import = 0, cities = 0, road_networks = 0;
+    bool operator==(const CatalogStamp&) const = default;
+  };
+  std::int64_t last_import_ = -1;  // -1: not polled yet
+  CatalogStamp last_;
   bool stopped_ = false;
 };
 

@@ -9,6 +9,7 @@
 #include <boost/beast/websocket.hpp>
 
 #include <cstdio>
+#include <limits>
 
 namespace tourmap::server {
 
@@ -53,6 +54,7 @@ HttpSession::HttpSession(net::ip::tcp::socket&& socket, ServerState& state)
   beast::error_code ec;
   auto ep = stream_.socket().remote_endpoint(ec);
   remote_ = ec ? "-" : ep.address().to_string();
+  client_ = remote_;
 }
 
 HttpSession::~HttpSession() {
@@ -73,8 +75,13 @@ void HttpSession::run() {
 void HttpSession::read_header() {
   if (state_.stopping) return close();
   origin_.clear();
+  client_ = remote_;
+  write_access_ = WriteAccess::not_needed;
   parser_.emplace();
-  parser_->body_limit(state_.config.max_body_bytes);
+  // Beast checks a Content-Length against the limit while parsing the header, before we know
+  // whether the request is an authorised upload: the limit is applied in on_header. (Not
+  // boost::none: Beast 1.74 compares the length against the optional, and none is the smallest.)
+  parser_->body_limit(std::numeric_limits<std::uint64_t>::max());
   parser_->header_limit(static_cast<std::uint32_t>(state_.config.max_header_bytes));
   stream_.expires_after(seconds(state_.config.idle_timeout_s));
   http::async_read_header(stream_, buffer_, *parser_,
@@ -85,9 +92,32 @@ void HttpSession::on_header(beast::error_code ec) {
   if (ec) return on_read(ec);
   busy_ = true;
   started_ = Clock::now();
+  const auto& header = parser_->get();
+  if (state_.trusted_proxies.enabled())
+    client_ = state_.trusted_proxies.client_of(remote_, header["X-Forwarded-For"]);
+  write_access_ = check_write_access(header);
+  // An authorised write may carry an upload (an OSM extract) bigger than the body limit.
+  const std::size_t limit = body_limit();
+  parser_->body_limit(limit);  // counts down chunked bodies
+  if (auto length = parser_->content_length(); length && *length > limit) return on_read(http::error::body_limit);
   stream_.expires_after(seconds(state_.config.request_timeout_s));
+  // A client that waits for "100 Continue" before sending a body (curl does above 1 MiB) gets it
+  // when the body is welcome, and a refused write its 401 at once, without the upload.
+  if (beast::iequals(header[http::field::expect], "100-continue")) {
+    if (write_access_ != WriteAccess::not_needed && write_access_ != WriteAccess::granted)
+      return on_read(http::error::body_limit);  // answered by refuse_write, connection closed
+    auto go_on = std::make_shared<http::response<http::empty_body>>(http::status::continue_, header.version());
+    return http::async_write(stream_, *go_on, [self = shared_from_this(), go_on](beast::error_code ec2, std::size_t) {
+      if (ec2) return self->close();
+      self->read_body();
+    });
+  }
+  read_body();
+}
+
+void HttpSession::read_body() {
   http::async_read(stream_, buffer_, *parser_,
-                   [self = shared_from_this()](beast::error_code ec2, std::size_t) { self->on_read(ec2); });
+                   [self = shared_from_this()](beast::error_code ec, std::size_t) { self->on_read(ec); });
 }
 
 void HttpSession::fail_read(int status, const std::string& code, const std::string& message) {
@@ -104,9 +134,19 @@ void HttpSession::on_read(beast::error_code ec) {
   if (ec == http::error::end_of_stream || ec == net::error::operation_aborted || ec == beast::error::timeout ||
       ec == net::error::connection_reset || ec == net::error::eof)
     return close();
+  // A refused write whose body is too big to read, or whose client waits for 100 Continue.
+  if (ec == http::error::body_limit && write_access_ != WriteAccess::not_needed &&
+      write_access_ != WriteAccess::granted) {
+    busy_ = true;
+    method_ = std::string(parser_->get().method_string());
+    target_ = std::string(parser_->get().target());
+    RequestFacts facts;
+    facts.keep_alive = false;  // the body was not read
+    route_label_ = "unauthorized";
+    return refuse_write(facts);
+  }
   if (ec == http::error::body_limit)
-    return fail_read(413, "payload_too_large",
-                     "request body exceeds " + std::to_string(state_.config.max_body_bytes) + " bytes");
+    return fail_read(413, "payload_too_large", "request body exceeds " + std::to_string(body_limit()) + " bytes");
   if (ec == http::error::header_limit)
     return fail_read(431, "header_too_large",
                      "request header exceeds " + std::to_string(state_.config.max_header_bytes) + " bytes");
@@ -143,7 +183,7 @@ bool HttpSession::refuse_if_rate_limited(const Request& req) {
   const std::string_view path = target.substr(0, target.find('?'));
   if ((req.method() == http::verb::get || req.method() == http::verb::head) && (path == "/healthz" || path == "/metrics"))
     return false;
-  auto decision = state_.rate_limiter.acquire(remote_, Clock::now());
+  auto decision = state_.rate_limiter.acquire(client_, Clock::now());
   if (decision.allowed) return false;
   const long retry_s = RateLimiter::retry_after_header(decision.retry_after_s);
   busy_ = true;
@@ -209,6 +249,7 @@ void HttpSession::handle(Request&& req) {
 
   const api::Route& route = *match.route;
   route_label_ = route.pattern;
+  if (route.access == api::Access::api_key && write_access_ != WriteAccess::granted) return refuse_write(facts);
   if (route.exec == api::Exec::io) {
     auto r = run_handler(route, areq);
     return send(finish_response(std::move(r), facts, state_.config), route_label_);
@@ -237,6 +278,54 @@ void HttpSession::handle(Request&& req) {
     r.headers.emplace_back("Retry-After", "1");
     send(finish_response(std::move(r), facts, state_.config), route_label_);
   }
+}
+
+std::size_t HttpSession::body_limit() const {
+  return write_access_ == WriteAccess::granted ? state_.config.max_upload_bytes : state_.config.max_body_bytes;
+}
+
+HttpSession::WriteAccess HttpSession::check_write_access(const Request& header) const {
+  auto target = parse_target(header.target());
+  if (!target) return WriteAccess::not_needed;  // answered 400 once read
+  api::Request probe;
+  probe.method = std::string(header.method_string());
+  probe.path = std::move(target->path);
+  auto match = state_.router.match(probe);
+  if (!match.route || match.route->access != api::Access::api_key) return WriteAccess::not_needed;
+  std::string_view key = header[http::field::authorization];
+  if (key.size() > 7 && beast::iequals(key.substr(0, 7), "Bearer "))
+    key.remove_prefix(7);
+  else
+    key = header["X-API-Key"];
+  while (!key.empty() && key.front() == ' ') key.remove_prefix(1);
+  while (!key.empty() && key.back() == ' ') key.remove_suffix(1);
+  if (key.empty()) return WriteAccess::missing_key;
+  if (!state_.verify_api_key) return WriteAccess::bad_key;
+  try {
+    return state_.verify_api_key(key) ? WriteAccess::granted : WriteAccess::bad_key;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "error: cannot check an API key: %s\n", e.what());
+    return WriteAccess::unavailable;
+  }
+}
+
+void HttpSession::refuse_write(const RequestFacts& facts) {
+  api::Response r;
+  if (write_access_ == WriteAccess::unavailable) {
+    r = api::error_response(503, "unavailable", "cannot check the API key now; retry shortly");
+    r.headers.emplace_back("Retry-After", "1");
+  } else if (write_access_ == WriteAccess::bad_key) {
+    r = api::error_response(401, "invalid_api_key", "the API key is not valid (unknown, revoked or mistyped)",
+                            "Authorization");
+    r.headers.emplace_back("WWW-Authenticate", "Bearer realm=\"tourmap\", error=\"invalid_token\"");
+  } else {
+    r = api::error_response(401, "unauthorized",
+                            "this request changes data and needs an API key: send `Authorization: Bearer <key>` "
+                            "or `X-API-Key: <key>` (an operator creates keys with `tourmap keys create`)",
+                            "Authorization");
+    r.headers.emplace_back("WWW-Authenticate", "Bearer realm=\"tourmap\"");
+  }
+  send(finish_response(std::move(r), facts, state_.config), route_label_);
 }
 
 void HttpSession::answer_preflight(const RequestFacts& facts) {
@@ -288,7 +377,7 @@ void HttpSession::send(Response&& res, const std::string& route_label) {
 void HttpSession::on_write(bool close_after, beast::error_code ec, std::size_t bytes) {
   int status = response_ ? static_cast<int>(response_->result_int()) : 0;
   double ms = std::chrono::duration<double, std::milli>(Clock::now() - started_).count();
-  state_.access_log.write(remote_, method_, target_, status, bytes, ms);
+  state_.access_log.write(client_, method_, target_, status, bytes, ms);
   if (counted_) --state_.in_flight;
   counted_ = false;
   response_.reset();

@@ -28,8 +28,14 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
 
   void read_header();
   void on_header(boost::beast::error_code ec);
+  void read_body();
   void on_read(boost::beast::error_code ec);
   bool refuse_if_rate_limited(const Request& req);
+  // Write routes need an API key; checked from the header alone, before the body is read.
+  enum class WriteAccess { not_needed, granted, missing_key, bad_key, unavailable };
+  WriteAccess check_write_access(const Request& header) const;
+  void refuse_write(const RequestFacts& facts);
+  std::size_t body_limit() const;  // for the request being read
   void handle(Request&& req);
   void answer_preflight(const RequestFacts& facts);
   void add_cors_headers(Response& res) const;
@@ -45,7 +51,9 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
   std::optional<boost::beast::http::request_parser<boost::beast::http::string_body>> parser_;
   ServerState& state_;
   std::uint64_t registry_id_ = 0;
-  std::string remote_;
+  std::string remote_;  // the peer's address
+  std::string client_;  // the request's client: remote_, or from X-Forwarded-For via a trusted proxy
+  WriteAccess write_access_ = WriteAccess::not_needed;
 
   // The request being answered (for the access log, metrics and response finishing).
   bool busy_ = false;

@@ -6,6 +6,7 @@
 #include "server_state.hpp"
 #include "ws_session.hpp"
 
+#include "store/api_keys.hpp"
 #include "store/migrate.hpp"
 
 #include <boost/asio/io_context.hpp>
@@ -74,6 +75,10 @@ int serve(const Config& config, const std::function<void(unsigned short)>& on_li
   ctx.crowd = &crowd_assets;
   ctx.crowd_limits.max_streams = config.max_crowd_streams;
   CrowdStreamer crowd(crowd_assets, ctx.crowd_limits);
+  state.verify_api_key = [&db](std::string_view key) {
+    auto conn = db.acquire();
+    return store::verify_api_key(*conn, key).has_value();
+  };
   register_routes(state, ctx, events, crowd);
   add_gauges(state);
   state.metrics.add_gauge("tourmap_crowd_streams", "Open crowd streams.",

@@ -9,6 +9,7 @@
 #include "metrics.hpp"
 #include "rate_limiter.hpp"
 #include "static_files.hpp"
+#include "trusted_proxies.hpp"
 
 #include "api/router.hpp"
 
@@ -18,6 +19,7 @@
 #include <memory>
 #include <mutex>
 #include <string>
+#include <string_view>
 
 namespace tourmap::server {
 
@@ -70,7 +72,8 @@ struct ServerState {
         access_log(config.access_log),
         static_files(config.web_root),
         rate_limiter(rate_limiter_options(config)),
-        cors(config.cors_origins) {}
+        cors(config.cors_origins),
+        trusted_proxies(config.trusted_proxies) {}
 
   static RateLimiter::Options rate_limiter_options(const Config& c) {
     RateLimiter::Options o;
@@ -90,6 +93,9 @@ struct ServerState {
   SessionRegistry ws_sessions;
   RateLimiter rate_limiter;  // per client address, before routing
   CorsPolicy cors;
+  TrustedProxies trusted_proxies;  // whose X-Forwarded-For names the client (rate limit, access log)
+  // True when the key is an active API key (the write routes need one); unset: no writes.
+  std::function<bool(std::string_view key)> verify_api_key;
   std::atomic<bool> stopping{false};
   std::atomic<long> in_flight{0};  // requests read and not yet answered
 };

@@ -29,8 +29,8 @@ double squared_deg_distance(geo::LonLat a, geo::LonLat b) {
 
 model::MetroNetwork parse_metro_loom(std::string_view json_text_in, const std::string& source) {
   nlohmann::json doc = parse_json(json_text_in, source);
-  if (!doc.is_object() || doc.value("type", "") != "FeatureCollection" || !doc.contains("features") ||
-      !doc["features"].is_array())
+  if (!doc.is_object() || json_text(doc, "type").value_or("") != "FeatureCollection" ||
+      !doc.contains("features") || !doc["features"].is_array())
     throw LoadError(source, "expected a GeoJSON FeatureCollection with a 'features' array");
   const auto& features = doc["features"];
 
@@ -42,7 +42,7 @@ model::MetroNetwork parse_metro_loom(std::string_view json_text_in, const std::s
     const auto& f = features[i];
     if (!f.is_object() || !f.contains("geometry") || !f["geometry"].is_object())
       throw LoadError(where(i), "feature without a geometry");
-    if (f["geometry"].value("type", "") != "Point") continue;
+    if (json_text(f["geometry"], "type").value_or("") != "Point") continue;
     const auto props = f.value("properties", nlohmann::json::object());
     model::MetroNode node;
     node.id = json_text(props, "id").value_or("");
@@ -57,7 +57,7 @@ model::MetroNetwork parse_metro_loom(std::string_view json_text_in, const std::s
   for (std::size_t i = 0; i < features.size(); ++i) {
     const auto& f = features[i];
     const auto& geom = f["geometry"];
-    auto type = geom.value("type", "");
+    auto type = json_text(geom, "type").value_or("");
     if (type == "Point") continue;
     if (type != "LineString") throw LoadError(where(i), "unsupported geometry type '" + type + "'");
     const auto props = f.value("properties", nlohmann::json::object());

@@ -70,8 +70,8 @@ std::vector<model::Poi> parse_object_array(const nlohmann::json& arr, const std:
 std::vector<model::Poi> parse_pois_geojson(std::string_view text, const std::string& source,
                                            const PoiLoadOptions& options) {
   auto doc = parse_json(text, source);
-  if (!doc.is_object() || doc.value("type", "") != "FeatureCollection" || !doc.contains("features") ||
-      !doc["features"].is_array())
+  if (!doc.is_object() || json_text(doc, "type").value_or("") != "FeatureCollection" ||
+      !doc.contains("features") || !doc["features"].is_array())
     throw LoadError(source, "expected a GeoJSON FeatureCollection with a 'features' array");
   std::vector<model::Poi> pois;
   std::unordered_set<std::string> ids;
@@ -82,7 +82,7 @@ std::vector<model::Poi> parse_pois_geojson(std::string_view text, const std::str
     if (!f.is_object() || !f.contains("geometry") || !f["geometry"].is_object())
       throw LoadError(where, "feature without a geometry");
     const auto& geom = f["geometry"];
-    if (geom.value("type", "") != "Point") throw LoadError(where, "POI geometry must be a Point");
+    if (json_text(geom, "type").value_or("") != "Point") throw LoadError(where, "POI geometry must be a Point");
     const auto& c = geom.value("coordinates", nlohmann::json());
     if (!c.is_array() || c.size() < 2 || !c[0].is_number() || !c[1].is_number())
       throw LoadError(where, "coordinates must be [lon, lat]");

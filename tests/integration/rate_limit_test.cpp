@@ -166,7 +166,7 @@ TEST_F(CorsLive, PreflightFromAnAllowedOriginIs204) {
   EXPECT_EQ(r.status, 204) << r.body;
   EXPECT_TRUE(r.body.empty());
   EXPECT_EQ(r.header("access-control-allow-origin"), kAllowed);
-  EXPECT_EQ(r.header("access-control-allow-methods"), "GET, POST, OPTIONS");
+  EXPECT_EQ(r.header("access-control-allow-methods"), "GET, POST, PUT, DELETE, OPTIONS");
   EXPECT_EQ(r.header("access-control-allow-headers"), "Content-Type, Authorization, X-API-Key, If-None-Match");
   EXPECT_EQ(r.header("access-control-max-age"), "600");
   EXPECT_NE(r.header("vary").find("Origin"), std::string::npos);

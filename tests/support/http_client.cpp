@@ -10,6 +10,7 @@
 #include <boost/beast/websocket.hpp>
 
 #include <cctype>
+#include <functional>
 #include <stdexcept>
 
 namespace tourmap::test {
@@ -55,15 +56,22 @@ std::string raw_exchange(unsigned short port, const std::string& bytes, std::chr
   net::io_context ioc;
   beast::tcp_stream stream(ioc);
   stream.connect(tcp::endpoint(net::ip::make_address("127.0.0.1"), port));
-  stream.expires_after(timeout);
   beast::error_code ec;
   net::write(stream, net::buffer(bytes), ec);
   std::string out;
+  if (ec) return out;
+  // Asynchronous reads: the stream's timeout applies only to those (a blocking read_some would
+  // wait for the server however long it keeps the connection open).
+  stream.expires_after(timeout);
   char buf[4096];
-  while (!ec) {
-    auto n = stream.read_some(net::buffer(buf), ec);
-    out.append(buf, n);
-  }
+  std::function<void()> read_more = [&] {
+    stream.async_read_some(net::buffer(buf), [&](beast::error_code read_ec, std::size_t n) {
+      out.append(buf, n);
+      if (!read_ec) read_more();
+    });
+  };
+  read_more();
+  ioc.run();
   return out;
 }
 

@@ -2,6 +2,8 @@
 #include "load/metro_load.hpp"
 #include "test_data.hpp"
 
+#include "load/poi_load.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -74,6 +76,20 @@ TEST(MetroLoom, RejectsDuplicateIdsBadCoordinatesAndNonCollections) {
   EXPECT_THROW(parse_metro_loom(R"({"type":"Feature"})", "f.json"), LoadError);
   EXPECT_THROW(parse_metro_loom(R"({"type":"FeatureCollection","features":[)", "t.json"), LoadError);
   EXPECT_THROW(parse_metro_loom(R"({"type":"FeatureCollection","features":[]})", "e.json"), LoadError);  // no stations
+}
+
+// A "type" that is not a string was a json type_error (500 over HTTP), not a LoadError.
+TEST(MetroLoom, NonStringTypesAreLoadErrors) {
+  EXPECT_THROW(parse_metro_loom(R"({"type": 1})", "n.json"), LoadError);
+  EXPECT_THROW(parse_metro_loom(R"({"type":"FeatureCollection","features":[
+    {"type":"Feature","properties":{"id":"a"},"geometry":{"type":["Point"],"coordinates":[1,2]}}]})",
+                                "g.json"),
+               LoadError);
+  EXPECT_THROW(load::parse_pois_geojson(R"({"type": {}})", "p.json"), LoadError);
+  EXPECT_THROW(load::parse_pois_geojson(R"({"type":"FeatureCollection","features":[
+    {"type":"Feature","properties":{"name":"a"},"geometry":{"type":7,"coordinates":[1,2]}}]})",
+                                        "q.json"),
+               LoadError);
 }
 
 TEST(MetroStationCsvs, LoadsLondonAndMergesParallelLines) {

@@ -1,0 +1,190 @@
+// The write endpoints: import a city's metro network or POIs, import a road network, delete
+// either, purge the result cache. The router marks them Access::api_key, so the server has
+// checked the caller's API key (from the header, before reading the body) when they run. Each
+// import is one transaction (store/importer.hpp): a body that fails to load changes nothing.
+
+#include "params.hpp"
+#include "routes.hpp"
+#include "upload.hpp"
+
+#include "load/load_error.hpp"
+#include "store/importer.hpp"
+#include "store/repo.hpp"
+
+namespace tourmap::api {
+
+namespace {
+
+constexpr std::size_t kMaxTextParam = 500;
+
+// An optional free-text query parameter (a name or an attribution), at most kMaxTextParam bytes.
+std::string text_param(const Request& req, const std::string& name, const std::string& fallback = "") {
+  const auto* v = req.query_param(name);
+  if (!v) return fallback;
+  if (v->size() > kMaxTextParam)
+    throw ApiError(400, "invalid_parameter", name + ": at most " + std::to_string(kMaxTextParam) + " bytes", name);
+  return *v;
+}
+
+// Ids of what a PUT creates: an invalid one is a bad request (a read of it would be a 404).
+void require_new_id(const std::string& id, const std::string& what) {
+  if (!store::is_valid_id(id))
+    throw ApiError(400, "invalid_parameter",
+                   "id: a " + what + " id is 1 to 64 characters of a-z, 0-9, '-' and '_', starting with a letter or digit",
+                   "id");
+}
+
+void require_body(const Request& req) {
+  if (req.body.empty()) throw ApiError(400, "invalid_body", "the request body is empty: send the source file", "body");
+}
+
+nlohmann::json import_json(const store::ImportResult& r) {
+  return {{"kind", r.kind},       {"target", r.target}, {"skipped", r.skipped}, {"version", r.version},
+          {"rows", r.rows},       {"seconds", r.seconds}, {"summary", r.summary}};
+}
+
+// Runs an import, mapping the loaders' and importer's errors to 4xx answers about the body.
+template <class F>
+Response run_import(F&& import) {
+  try {
+    return json_response(import_json(import()));
+  } catch (const load::LoadError& e) {
+    throw ApiError(422, "invalid_source", std::string("nothing was imported: ") + e.what(), "body");
+  } catch (const std::invalid_argument& e) {
+    throw ApiError(400, "invalid_import", std::string("nothing was imported: ") + e.what(), "body");
+  }
+}
+
+// station-csvs sends its three files as {"stations": "...", "lines": "...", "connections": "..."}.
+std::vector<std::string> station_csv_files(const Request& req, const UploadDir& dir, const std::string& id) {
+  auto body = parse_json_body(req);
+  std::vector<std::string> files;
+  for (const char* part : {"stations", "lines", "connections"}) {
+    if (!body.is_object() || !body.contains(part) || !body[part].is_string())
+      throw ApiError(400, "invalid_body",
+                     std::string("format=station-csvs needs a JSON body with string fields stations, lines and "
+                                 "connections (the three CSV files); ") + part + " is missing",
+                     part);
+    files.push_back(dir.write(id + "." + part + ".csv", body[part].get_ref<const std::string&>()));
+  }
+  return files;
+}
+
+Response put_metro(AppContext& ctx, Request& req) {
+  const auto& id = req.param("id");
+  require_new_id(id, "city");
+  require_body(req);
+  std::string format = text_param(req, "format", "auto");
+  if (format == "auto") {
+    auto first = req.body.find_first_not_of(" \t\r\n");
+    format = first != std::string::npos && req.body[first] == '{' ? "loom" : "line-csv";
+  }
+  store::MetroImport import;
+  try {
+    import.format = store::parse_metro_format(format);
+  } catch (const std::invalid_argument& e) {
+    throw ApiError(400, "invalid_parameter", std::string("format: ") + e.what(), "format");
+  }
+  std::string fallback_name;
+  {
+    auto db = ctx.db.acquire();
+    if (auto city = store::find_city(*db, id)) fallback_name = city->name;
+  }
+  import.city = {id, text_param(req, "name", fallback_name), text_param(req, "attribution")};
+  if (import.city.name.empty())
+    throw ApiError(400, "invalid_parameter", "name: a new city needs a name (?name=...)", "name");
+  import.force = query_bool(req, "force", false);
+  UploadDir dir;
+  if (import.format == store::MetroFormat::station_csvs)
+    import.files = station_csv_files(req, dir, id);
+  else
+    import.files = {dir.write(id + (import.format == store::MetroFormat::loom ? ".geojson" : ".csv"), req.body)};
+  return run_import([&] {
+    auto db = ctx.db.acquire();
+    return store::import_metro(*db, import);
+  });
+}
+
+Response put_pois(AppContext& ctx, Request& req) {
+  const auto& id = req.param("id");
+  require_slug(id, "city");
+  require_body(req);
+  {
+    auto db = ctx.db.acquire();
+    if (!store::city_version(*db, id))
+      throw ApiError(404, "not_found", "no city '" + id + "': import its metro network first", "id");
+  }
+  UploadDir dir;
+  store::PoiImport import{id, dir.write(id + ".pois." + sniff_poi_extension(req.body), req.body),
+                          text_param(req, "category"), text_param(req, "attribution"),
+                          query_bool(req, "force", false)};
+  return run_import([&] {
+    auto db = ctx.db.acquire();
+    return store::import_pois(*db, import);
+  });
+}
+
+Response put_roads(AppContext& ctx, Request& req) {
+  const auto& id = req.param("id");
+  require_new_id(id, "road network");
+  require_body(req);
+  auto extension = sniff_osm_extension(req.body);
+  if (extension.empty())
+    throw ApiError(415, "unsupported_format",
+                   "the body is not an OSM extract (expected OSM XML, .osm.gz, .osm.bz2 or .osm.pbf bytes)", "body");
+  std::string fallback_name;
+  {
+    auto db = ctx.db.acquire();
+    if (auto info = store::find_road_network(*db, id)) fallback_name = info->name;
+  }
+  store::RoadImport import;
+  import.network = {id, text_param(req, "name", fallback_name),
+                    text_param(req, "attribution", "© OpenStreetMap contributors (ODbL 1.0)")};
+  if (import.network.name.empty())
+    throw ApiError(400, "invalid_parameter", "name: a new road network needs a name (?name=...)", "name");
+  import.force = query_bool(req, "force", false);
+  UploadDir dir;
+  import.file = dir.write(id + "." + extension, req.body);
+  return run_import([&] {
+    auto db = ctx.db.acquire();
+    return store::import_roads(*db, import);
+  });
+}
+
+}  // namespace
+
+void add_write_routes(Router& router, AppContext& ctx) {
+  router.add_write("PUT", "/api/v1/cities/{id}/metro", Exec::compute,
+                   [&ctx](Request& req) { return put_metro(ctx, req); });
+  router.add_write("PUT", "/api/v1/cities/{id}/pois", Exec::compute,
+                   [&ctx](Request& req) { return put_pois(ctx, req); });
+  router.add_write("PUT", "/api/v1/roads/{id}", Exec::compute, [&ctx](Request& req) { return put_roads(ctx, req); });
+
+  router.add_write("DELETE", "/api/v1/cities/{id}", Exec::compute, [&ctx](Request& req) {
+    const auto& id = req.param("id");
+    require_slug(id, "city");
+    auto db = ctx.db.acquire();
+    if (!store::delete_city(*db, id)) throw ApiError(404, "not_found", "no city '" + id + "'", "id");
+    return json_response({{"deleted", {{"kind", "city"}, {"id", id}}}});
+  });
+  router.add_write("DELETE", "/api/v1/roads/{id}", Exec::compute, [&ctx](Request& req) {
+    const auto& id = req.param("id");
+    require_slug(id, "road network");
+    auto db = ctx.db.acquire();
+    if (!store::delete_road_network(*db, id)) throw ApiError(404, "not_found", "no road network '" + id + "'", "id");
+    return json_response({{"deleted", {{"kind", "roads"}, {"id", id}}}});
+  });
+
+  // Persisted results only (layouts, cluster trees, crowd hierarchies): in-memory copies are
+  // keyed by data version and age out; a restart drops them.
+  router.add_write("DELETE", "/api/v1/cache", Exec::compute, [&ctx](Request& req) {
+    std::string kind = text_param(req, "kind");
+    if (!kind.empty() && kind != "layout" && kind != "clusters" && kind != "crowd-hierarchy")
+      throw ApiError(400, "invalid_parameter", "kind: expected layout, clusters or crowd-hierarchy", "kind");
+    auto db = ctx.db.acquire();
+    auto purged = store::cache_purge(*db, kind);
+    return json_response({{"purged", purged}, {"kind", kind.empty() ? nlohmann::json(nullptr) : nlohmann::json(kind)}});
+  });
+}
+
+}  // namespace tourmap::api

@@ -1,0 +1,32 @@
+#pragma once
+// Uploaded import sources: the loaders read files (libosmium picks its reader from the file
+// name), so a request body is written to a private temporary directory, named with the
+// extension its format needs, and removed when the import is done.
+
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+namespace tourmap::api {
+
+class UploadDir {
+ public:
+  UploadDir();  // a fresh 0700 directory under the system temp dir; throws on failure
+  ~UploadDir();
+  UploadDir(const UploadDir&) = delete;
+  UploadDir& operator=(const UploadDir&) = delete;
+
+  // Writes `bytes` to `name` (a plain file name) in the directory; returns its path.
+  std::string write(const std::string& name, std::string_view bytes) const;
+
+ private:
+  std::filesystem::path dir_;
+};
+
+// File name extensions by content, for bodies sent without a `format`:
+//   OSM: "osm.pbf" (OSMHeader blob), "osm.gz" (gzip), "osm.bz2" (bzip2), "osm" (XML); "" unknown.
+std::string sniff_osm_extension(std::string_view bytes);
+//   POIs: "json" (GeoJSON object), "js" (JSON array or `var x = [...]`), else "csv".
+std::string sniff_poi_extension(std::string_view bytes);
+
+}  // namespace tourmap::api
