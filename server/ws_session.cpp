@@ -115,6 +115,16 @@ void WsSession::on_read(beast::error_code ec, std::size_t) {
     return;
   }
   if (ec) return finish();
+  const auto now = std::chrono::steady_clock::now();
+  if (now - window_start_ >= std::chrono::seconds(1)) {
+    window_start_ = now;
+    messages_in_window_ = 0;
+  }
+  if (++messages_in_window_ > kMaxMessagesPerSecond) {
+    close(websocket::close_code::policy_error,
+          "more than " + std::to_string(kMaxMessagesPerSecond) + " messages per second");
+    return;
+  }
   std::string text = beast::buffers_to_string(buffer_.data());
   buffer_.consume(buffer_.size());
   if (ws_.got_text() && endpoint_.on_text) {

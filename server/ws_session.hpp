@@ -12,6 +12,7 @@
 #include <boost/beast/websocket.hpp>
 
 #include <atomic>
+#include <chrono>
 #include <deque>
 #include <memory>
 #include <string>
@@ -22,6 +23,9 @@ class WsSession : public std::enable_shared_from_this<WsSession> {
  public:
   static constexpr std::size_t kMaxQueued = 16;
   static constexpr std::size_t kMaxMessageBytes = 64 * 1024;
+  // Any endpoint: more messages than this in one second close the connection (1008). Endpoints
+  // may be stricter (the crowd stream allows 60 views and 60 acks per second).
+  static constexpr unsigned kMaxMessagesPerSecond = 200;
 
   WsSession(boost::asio::ip::tcp::socket&& socket, ServerState& state, const WsEndpoint& endpoint,
             std::string path);
@@ -63,6 +67,8 @@ class WsSession : public std::enable_shared_from_this<WsSession> {
   bool open_ = false;
   bool closed_ = false;
   std::size_t dropped_ = 0;
+  std::chrono::steady_clock::time_point window_start_{};  // the current one-second window
+  unsigned messages_in_window_ = 0;
   std::atomic<std::size_t> binary_in_flight_{0};
   std::atomic<bool> closed_flag_{false};
   std::uint64_t registry_id_ = 0;

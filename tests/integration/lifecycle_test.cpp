@@ -55,3 +55,38 @@ TEST(Lifecycle, IdleConnectionsAreClosed) {
 
 }  // namespace
 }  // namespace tourmap::test
+
+namespace tourmap::test {
+namespace {
+
+// Any WebSocket endpoint: a client sending more than 200 messages a second is closed (1008),
+// and a client within the rate is answered.
+TEST(Lifecycle, WebSocketMessageFloodIsClosed) {
+  LiveServer live;
+  WsClient calm(live.port(), "/api/v1/events");
+  calm.receive(std::chrono::seconds(5));  // hello
+  for (int i = 0; i < 20; ++i) calm.send(R"({"type":"ping"})");
+  for (int i = 0; i < 20; ++i) EXPECT_EQ(calm.receive(std::chrono::seconds(5)), R"({"type":"pong"})");
+
+  WsClient flood(live.port(), "/api/v1/events");
+  for (int i = 0; i < 400; ++i) {
+    try {
+      flood.send(R"({"type":"ping"})");
+    } catch (const std::exception&) {
+      break;  // already closed
+    }
+  }
+  bool closed = false;
+  for (int i = 0; i < 500 && !closed; ++i) {
+    try {
+      flood.receive(std::chrono::seconds(5));
+    } catch (const std::exception&) {
+      closed = true;
+    }
+  }
+  ASSERT_TRUE(closed);
+  EXPECT_EQ(flood.close_code(), 1008);
+}
+
+}  // namespace
+}  // namespace tourmap::test
