@@ -1,7 +1,10 @@
 #pragma once
 // In-memory copies of cities and road networks, reloaded when their version in the store
 // changes. A city or network imported while the server runs (by another process, even) is
-// served on the next request, without a restart.
+// served on the next request, without a restart. Loads run outside the catalog's lock (a big
+// road network takes ~200 ms), one per (id, version) at a time: other ids are served meanwhile.
+
+#include "single_flight.hpp"
 
 #include "store/db_pool.hpp"
 
@@ -31,10 +34,14 @@ class Catalog {
   store::DbPool& pool() { return pool_; }
 
  private:
+  std::shared_ptr<const RoadNetworkEntry> load_road_entry(const std::string& id);
+
   store::DbPool& pool_;
-  std::mutex mutex_;
+  std::mutex mutex_;  // guards the two maps only
   std::map<std::string, std::shared_ptr<const model::City>> cities_;
   std::map<std::string, std::shared_ptr<const RoadNetworkEntry>> roads_;
+  SingleFlight<std::shared_ptr<const model::City>> city_loads_;
+  SingleFlight<std::shared_ptr<const RoadNetworkEntry>> road_loads_;
 };
 
 }  // namespace tourmap::api
