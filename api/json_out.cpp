@@ -54,30 +54,59 @@ void append_integer(std::string& out, std::int64_t value) {
   out.append(buf, end);
 }
 
-void append_string(std::string& out, std::string_view text) {
-  if (!load::is_valid_utf8(text)) {
-    out += nlohmann::json(std::string(text)).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+void append_double(std::string& out, double value) {
+  if (!std::isfinite(value)) {
+    out += "null";
     return;
   }
-  out += '"';
-  for (char c : text) {
-    switch (c) {
-      case '"': out += "\\\""; break;
-      case '\\': out += "\\\\"; break;
-      case '\n': out += "\\n"; break;
-      case '\r': out += "\\r"; break;
-      case '\t': out += "\\t"; break;
-      default:
-        if (static_cast<unsigned char>(c) < 0x20) {
-          char esc[8];
-          std::snprintf(esc, sizeof esc, "\\u%04x", static_cast<unsigned char>(c));
-          out += esc;
-        } else {
-          out += c;
-        }
+  char buf[32];
+  const auto [end, ec] = std::to_chars(buf, buf + sizeof buf, value);  // shortest round trip
+  const std::string_view text(buf, static_cast<std::size_t>(end - buf));
+  out += text;
+  if (text.find_first_of(".e") == std::string_view::npos) out += ".0";
+}
+
+namespace {
+
+void append_escaped(std::string& out, unsigned char c) {
+  switch (c) {
+    case '"': out += "\\\""; break;
+    case '\\': out += "\\\\"; break;
+    case '\n': out += "\\n"; break;
+    case '\r': out += "\\r"; break;
+    case '\t': out += "\\t"; break;
+    default: {
+      char esc[8];
+      std::snprintf(esc, sizeof esc, "\\u%04x", c);
+      out += esc;
     }
   }
+}
+
+}  // namespace
+
+void append_string(std::string& out, std::string_view text) {
+  // One pass that copies runs of plain bytes at once; UTF-8 is validated only when the text has
+  // a non-ASCII byte (POI names and links are mostly ASCII), and invalid text is written again
+  // by nlohmann::json, which replaces the bad bytes.
+  const std::size_t start = out.size();
+  unsigned char seen = 0;
+  std::size_t run = 0;
   out += '"';
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    seen |= c;
+    if (c >= 0x20 && c != '"' && c != '\\') continue;
+    out.append(text.data() + run, i - run);
+    append_escaped(out, c);
+    run = i + 1;
+  }
+  out.append(text.data() + run, text.size() - run);
+  out += '"';
+  if ((seen & 0x80) && !load::is_valid_utf8(text)) {
+    out.resize(start);
+    out += nlohmann::json(std::string(text)).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+  }
 }
 
 void append_position(std::string& out, geo::LonLat p) {

@@ -35,6 +35,37 @@ class MetroService {
   std::shared_ptr<const CityLayout> layout_for(const CityMetroData& data, const LayoutRequest& req, bool* cached);
 
  private:
+  using LonLats = std::vector<geo::LonLat>;
+  // A geographic cluster tree's node centres in lon/lat, and the tree they belong to (a tree
+  // rebuilt under the same key, e.g. after a cache purge, gets its own).
+  struct GeoCenters {
+    std::weak_ptr<const poi::ClusterTree> tree;
+    LonLats centers;
+  };
+  // A clusters query's tree and window in the tree's space; for the geographic tree also its
+  // centres in lon/lat (null in layout space).
+  struct ClusterWindow {
+    std::shared_ptr<const poi::ClusterTree> tree;
+    std::shared_ptr<const GeoCenters> centers;
+    geo::XY lo, hi;
+  };
+  // Writes cluster objects as JSON; `centers` null: the tree is in layout space.
+  struct ClusterWriter {
+    const poi::ClusterTree& tree;
+    const std::vector<model::Poi>& pois;
+    const LonLats* centers;
+
+    // [{...}, ...] for `nodes`, with prominence[i] for nodes[i].
+    void append_list(std::string& out, const std::vector<std::uint32_t>& nodes, const double* prominence) const;
+    void append_cluster(std::string& out, std::uint32_t node, double prominence) const;
+    void append_representative(std::string& out, std::uint32_t poi) const;
+  };
+
+  ClusterWindow geo_window(const CityMetroData& data, const std::string* bbox_text);
+  ClusterWindow layout_window(const Request& req, const CityMetroData& data, const std::string* bbox_text);
+  std::shared_ptr<const GeoCenters> geo_centers(const std::string& tree_key,
+                                                const std::shared_ptr<const poi::ClusterTree>& tree,
+                                                const geo::LocalProjection& projection);
   std::shared_ptr<const poi::ClusterTree> tree_for(const std::string& key, const std::vector<geo::XY>& points,
                                                    const std::vector<double>& worth, const std::vector<bool>* skip);
 
@@ -45,6 +76,7 @@ class MetroService {
   LruCache<std::shared_ptr<const CityLayout>> layouts_{32};
   LruCache<std::shared_ptr<const poi::ClusterTree>> trees_{32};
   LruCache<std::shared_ptr<const std::vector<double>>> geo_worth_{16};
+  LruCache<std::shared_ptr<const GeoCenters>> geo_centers_{16};  // by geographic tree key
   SingleFlight<std::shared_ptr<const CityLayout>> layout_flight_;
   SingleFlight<std::shared_ptr<const poi::ClusterTree>> tree_flight_;
 };

@@ -2,27 +2,58 @@
 
 #include <zlib.h>
 
+#include <array>
 #include <cctype>
+#include <memory>
 #include <stdexcept>
 
 namespace tourmap::server {
+namespace {
 
-std::string gzip_compress(std::string_view data, int level) {
-  z_stream zs{};
-  // windowBits 15 + 16: gzip wrapper instead of zlib's.
-  if (deflateInit2(&zs, level, Z_DEFLATED, 15 + 16, 8, Z_DEFAULT_STRATEGY) != Z_OK)
-    throw std::runtime_error("deflateInit2 failed");
-  std::string out(deflateBound(&zs, data.size()), '\0');
-  zs.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(data.data()));
-  zs.avail_in = static_cast<uInt>(data.size());
-  zs.next_out = reinterpret_cast<Bytef*>(out.data());
-  zs.avail_out = static_cast<uInt>(out.size());
-  int rc = deflate(&zs, Z_FINISH);
-  deflateEnd(&zs);
-  if (rc != Z_STREAM_END) throw std::runtime_error("deflate failed");
-  out.resize(zs.total_out);
-  return out;
+// A deflate stream kept per thread and level: deflateInit2 allocates and clears ~256 KiB
+// (window, hash chains, pending buffer), which under the cluster load showed up as malloc, free
+// and malloc_consolidate next to deflate itself; deflateReset only clears the hash heads.
+// (Windows sized to the body, for a smaller state, measured no faster.)
+class Deflater {
+ public:
+  explicit Deflater(int level) {
+    // windowBits 15 + 16: gzip wrapper instead of zlib's.
+    if (deflateInit2(&zs_, level, Z_DEFLATED, 15 + 16, 8, Z_DEFAULT_STRATEGY) != Z_OK)
+      throw std::runtime_error("deflateInit2 failed");
+  }
+  ~Deflater() { deflateEnd(&zs_); }
+  Deflater(const Deflater&) = delete;
+  Deflater& operator=(const Deflater&) = delete;
+
+  std::string compress(std::string_view data) {
+    if (deflateReset(&zs_) != Z_OK) throw std::runtime_error("deflateReset failed");
+    std::string out(deflateBound(&zs_, data.size()), '\0');
+    zs_.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(data.data()));
+    zs_.avail_in = static_cast<uInt>(data.size());
+    zs_.next_out = reinterpret_cast<Bytef*>(out.data());
+    zs_.avail_out = static_cast<uInt>(out.size());
+    const int rc = deflate(&zs_, Z_FINISH);
+    if (rc != Z_STREAM_END) throw std::runtime_error("deflate failed");
+    out.resize(zs_.total_out);
+    return out;
+  }
+
+ private:
+  z_stream zs_{};
+};
+
+Deflater& deflater_for(int level) {
+  // Levels 0..9 (Z_DEFAULT_COMPRESSION, -1, is 6); made on first use in each thread.
+  thread_local std::array<std::unique_ptr<Deflater>, 10> streams;
+  if (level < 0 || level > 9) level = 6;
+  auto& slot = streams[static_cast<std::size_t>(level)];
+  if (!slot) slot = std::make_unique<Deflater>(level);
+  return *slot;
 }
+
+}  // namespace
+
+std::string gzip_compress(std::string_view data, int level) { return deflater_for(level).compress(data); }
 
 std::string gzip_decompress(std::string_view data) {
   z_stream zs{};

@@ -47,6 +47,23 @@ api::Response run_handler(const api::Route& route, api::Request& req) {
   }
 }
 
+// Compute routes whose body is at most this big are finished (ETag, gzip) on the connection's IO
+// thread, bigger ones (road networks, deformations) on the pool. Bounded: deflating 32 KiB takes
+// well under a millisecond. Under the cluster load (7 KB answers, 2 cores) it cut the server's
+// context switches per request from ~2.8 to ~1 and its CPU per request by ~20 %: the pool
+// threads hand each result over after the handler instead of after the handler and the deflate,
+// so neither the pool nor the IO threads idle (and sleep, and get woken) as often.
+constexpr std::size_t kFinishOnIoMaxBytes = 32u << 10;
+
+// finish_response, with a failure in it (gzip) turned into a 500.
+http::response<http::string_body> finish_or_fail(api::Response r, const RequestFacts& facts, const Config& config) {
+  try {
+    return finish_response(std::move(r), facts, config);
+  } catch (const std::exception& e) {
+    return finish_response(api::error_response(500, "internal", e.what()), facts, config);
+  }
+}
+
 }  // namespace
 
 HttpSession::HttpSession(net::ip::tcp::socket&& socket, ServerState& state)
@@ -255,21 +272,22 @@ void HttpSession::handle(Request&& req) {
     return send(finish_response(std::move(r), facts, state_.config), route_label_);
   }
 
-  // Compute routes: the handler and the response finishing (gzip) run on the pool; the result
-  // comes back to this connection's strand to be written.
+  // Compute routes: the handler runs on the pool; the result comes back to this connection's
+  // strand to be written, finished (gzip) there when small, else on the pool before.
   auto self = shared_from_this();
   auto deadline = Clock::now() + seconds(state_.config.compute_deadline_s);
   auto task = [self, &route, areq = std::move(areq), facts](bool expired) mutable {
     api::Response r = expired ? api::error_response(503, "overloaded", "the request waited too long in the queue")
                               : run_handler(route, areq);
     if (expired) r.headers.emplace_back("Retry-After", "1");
-    Response res;
-    try {
-      res = finish_response(std::move(r), facts, self->state_.config);
-    } catch (const std::exception& e) {
-      res = finish_response(api::error_response(500, "internal", e.what()), facts, self->state_.config);
+    const Config& config = self->state_.config;
+    if (r.body.size() <= kFinishOnIoMaxBytes) {
+      net::post(self->stream_.get_executor(), [self, r = std::move(r), facts]() mutable {
+        self->send(finish_or_fail(std::move(r), facts, self->state_.config), self->route_label_);
+      });
+      return;
     }
-    net::post(self->stream_.get_executor(), [self, res = std::move(res)]() mutable {
+    net::post(self->stream_.get_executor(), [self, res = finish_or_fail(std::move(r), facts, config)]() mutable {
       self->send(std::move(res), self->route_label_);
     });
   };

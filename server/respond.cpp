@@ -4,9 +4,41 @@
 
 #include "util/hash.hpp"
 
+#include <cstdint>
+#include <cstring>
 
 namespace tourmap::server {
 namespace {
+
+// The ETag's hash, 8 bytes per step: FNV-1a's one multiply per byte took ~2.5 % of the server's
+// time under the cluster load (7 KB bodies). Stable across builds and runs; not for security.
+std::uint64_t body_hash(std::string_view s) {
+  constexpr std::uint64_t kMul = 0x9e3779b97f4a7c15ull;
+  auto mix = [](std::uint64_t h) {  // murmur3's finaliser: every input bit reaches every output bit
+    h ^= h >> 33;
+    h *= 0xff51afd7ed558ccdull;
+    h ^= h >> 33;
+    h *= 0xc4ceb9fe1a85ec53ull;
+    return h ^ (h >> 33);
+  };
+  std::uint64_t h = util::kFnvOffset ^ (s.size() * kMul);
+  std::size_t i = 0;
+  for (; i + 8 <= s.size(); i += 8) {
+    std::uint64_t word;
+    std::memcpy(&word, s.data() + i, 8);
+    h = (h ^ word) * kMul;
+    h ^= h >> 29;
+  }
+  std::uint64_t tail = 0;
+  if (i < s.size()) std::memcpy(&tail, s.data() + i, s.size() - i);
+  return mix(h ^ tail);
+}
+
+// Big bodies (deformed networks, whole road networks) get the fastest level: on a drag loop the
+// compression time matters more than the last 10 % of bytes. So do small ones (cluster answers,
+// city summaries): for a 7 KB cluster answer level 5 saves ~110 of ~1800 bytes (less than a
+// TCP segment) for ~40 % more deflate time, and deflate was a third of such a request's CPU.
+int gzip_level(std::size_t bytes) { return bytes > (256u << 10) || bytes < (16u << 10) ? 1 : 5; }
 
 bool compressible(const std::string& content_type) {
   return content_type.rfind("application/json", 0) == 0 || content_type.rfind("application/geo+json", 0) == 0 ||
@@ -22,7 +54,7 @@ bool has_header(const api::Response& r, const char* name) {
 
 }  // namespace
 
-std::string weak_etag(const std::string& body) { return "W/\"" + util::hex64(util::fnv1a64(body)) + "\""; }
+std::string weak_etag(const std::string& body) { return "W/\"" + util::hex64(body_hash(body)) + "\""; }
 
 bool etag_matches(const std::string& header, const std::string& etag) {
   if (header.empty()) return false;
@@ -69,9 +101,7 @@ http::response<http::string_body> finish_response(api::Response r, const Request
   if (compressible(r.content_type)) {
     res.set(http::field::vary, "Accept-Encoding");
     if (r.body.size() >= config.gzip_min_bytes && accepts_gzip(facts.accept_encoding)) {
-      // Big bodies (deformed networks, whole road networks) get the fastest level: on a drag
-      // loop the compression time matters more than the last 10% of bytes.
-      r.body = gzip_compress(r.body, r.body.size() > (256u << 10) ? 1 : 5);
+      r.body = gzip_compress(r.body, gzip_level(r.body.size()));
       res.set(http::field::content_encoding, "gzip");
     }
   }

@@ -25,7 +25,7 @@ struct RequestFacts {
 
 http::response<http::string_body> finish_response(api::Response r, const RequestFacts& facts, const Config& config);
 
-// FNV-1a 64 of the body, as a weak ETag value W/"...".
+// A 64-bit hash of the body (8 bytes per step), as a weak ETag value W/"...".
 std::string weak_etag(const std::string& body);
 // True when the If-None-Match header value lists `etag` (or is "*").
 bool etag_matches(const std::string& if_none_match, const std::string& etag);

@@ -12,7 +12,9 @@
 # the cores with the server), GZIP=0 (no Accept-Encoding: gzip), DEFORM_ROADS (monaco),
 # CROWD_CLIENTS (6: two over the default stream cap of 4), CROWD_MAX_SUBDIVISION (-1: the scenes'),
 # OVERLOAD_CONNECTIONS (512; 256 only fills the default compute queue), OVERLOAD_SECONDS (5),
-# RATE_LIMIT (0: the per-client limiter off), SERVE_ARGS (extra `tourmap serve` options).
+# RATE_LIMIT (0: the per-client limiter off), SERVE_ARGS (extra `tourmap serve` options),
+# ROWS (which rows, default "read clusters deform crowd overload"; e.g. ROWS=clusters measures the
+# cluster endpoint alone and skips the deform and crowd warm-ups).
 # Needs wrk, node 20+, python3 and curl. Progress goes to stderr, the table to stdout.
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
@@ -26,6 +28,8 @@ deform_roads="${DEFORM_ROADS:-monaco}"
 crowd_clients="${CROWD_CLIENTS:-6}"
 overload_connections="${OVERLOAD_CONNECTIONS:-512}"
 overload_seconds="${OVERLOAD_SECONDS:-5}"
+rows_wanted=" ${ROWS:-read clusters deform crowd overload} "
+want() { [[ "$rows_wanted" == *" $1 "* ]]; }
 
 for tool in wrk node python3 curl; do
   command -v "$tool" >/dev/null || { echo "run.sh needs $tool" >&2; exit 2; }
@@ -34,6 +38,8 @@ tmp="$(mktemp -d)"
 server_pid=
 # shellcheck source=tests/load/lib.sh
 source "$load/lib.sh"
+# shellcheck source=tests/load/warmup.sh
+source "$load/warmup.sh"
 trap 'tm_stop_server; rm -rf "$tmp"' EXIT
 log() { echo "[load] $*" >&2; }
 
@@ -49,48 +55,26 @@ url="http://127.0.0.1:$port"
 log "server pid $server_pid on port $port, RSS $(tm_rss)"
 
 # --- warm-up: what the rows need computed once, and the boxes the scripts draw windows from ---
-cities="$(tm_get /api/v1/cities)"
-roads="$(tm_get /api/v1/roads)"
-export CITIES ROADS GEO LAYOUT
-CITIES="$(tm_json '" ".join(c["id"] + "=" + ",".join(map(str, c.get("poi_bbox") or c["bbox"])) for c in d["cities"])' <<<"$cities")"
-ROADS="$(tm_json '" ".join(r["id"] + "=" + ",".join(map(str, r["bbox"])) for r in d["roads"])' <<<"$roads")"
-GEO="$(tm_json '" ".join(c["id"] + "=" + ",".join(map(str, c["poi_bbox"])) for c in d["cities"] if c["counts"]["pois"])' <<<"$cities")"
-LAYOUT=
-for entry in $CITIES; do
-  city="${entry%%=*}"
-  log "warm-up: $city (city, metro, POIs, layout)"
-  tm_get "/api/v1/cities/$city" >/dev/null
-  tm_get "/api/v1/cities/$city/metro" >/dev/null
-  tm_get "/api/v1/cities/$city/pois" >/dev/null
-  layout="$(tm_get "/api/v1/cities/$city/layout")"
-  if [[ " $GEO " == *" $city="* ]]; then  # POIs: cluster trees in both spaces, layout-space extent
-    box="$(tm_json '",".join(str(f([p["geometry"]["coordinates"][i] for p in d["pois"]["features"]])) for f, i in ((min, 0), (min, 1), (max, 0), (max, 1)))' <<<"$layout")"
-    LAYOUT="${LAYOUT:+$LAYOUT }$city=$box"
-    tm_get "/api/v1/cities/$city/clusters?m=10" >/dev/null
-    tm_get "/api/v1/cities/$city/clusters?m=10&space=layout&bbox=$box" >/dev/null
-  fi
-done
-for entry in $ROADS; do tm_get "/api/v1/roads/${entry%%=*}?bbox=${entry#*=}" >/dev/null; done
-deform_boxes=
-for id in $deform_roads; do
-  box="$(tr ' ' '\n' <<<"$ROADS" | sed -n "s/^$id=//p")"
-  [[ -n "$box" ]] || { echo "no road network $id" >&2; exit 2; }
-  deform_boxes="${deform_boxes:+$deform_boxes }$id=$box"
-  log "warm-up: deform focus on $id (grid and factorization)"
-  curl -sf -o /dev/null "$url/api/v1/deform/focus" -H 'Content-Type: application/json' \
-    -d "{\"roads\":\"$id\",\"regions\":[{\"center\":[$(cut -d, -f1 <<<"$box"),$(cut -d, -f2 <<<"$box")],\"radius_m\":300,\"scale\":3}],\"output\":{\"roads\":\"none\"}}"
-done
+tm_warm_up
+want deform || want overload || deform_roads=
+# shellcheck disable=SC2086  # a list of ids
+deform_boxes="$(tm_deform_boxes $deform_roads)"
 crowd() { node --no-warnings --experimental-websocket "$load/crowd_ws.mjs" --port "$port" "$@"; }
-log "warm-up: crowd scene office (the first preparation takes a while on a fresh database)"
-crowd --clients 1 --seconds 1 >/dev/null
+if want crowd; then
+  log "warm-up: crowd scene office (the first preparation takes a while on a fresh database)"
+  crowd --clients 1 --seconds 1 >/dev/null
+fi
 
 # --- rows ---
 rows=()
 fmt_ms() { awk -v v="$1" 'BEGIN { printf(v < 100 ? "%.2f ms" : "%.0f ms", v) }'; }
-died() {
-  rows+=("| $1 | server died | | | | | $2 | - |")
+print_table() {
   printf '%s\n' "| load | requests/s (or frames/s) | p50 | p99 | max | errors | RSS before | RSS after |" \
     "|---|---:|---:|---:|---:|---|---:|---:|" "${rows[@]}"
+}
+died() {
+  rows+=("| $1 | server died | | | | | $2 | - |")
+  print_table
   echo "the server died; its log:" >&2
   tail -20 "$tmp/server.log" >&2
   exit 1
@@ -139,28 +123,36 @@ wrk_row() {
   rows+=("| $label | $rps | $(fmt_ms "$(tm_field "$res" p50_ms)") | $(fmt_ms "$(tm_field "$res" p99_ms)") | $(fmt_ms "$(tm_field "$res" max_ms)") | $errors | $before | $after |")
 }
 
-wrk_row "read mix (c=$connections)" read.lua "$connections" "$seconds" 2s normal
-wrk_row "clusters geo+layout (c=$connections)" clusters.lua "$connections" "$seconds" 2s normal
-wrk_row "deform focus $deform_roads, cached (c=$connections)" deform.lua "$connections" "$seconds" 2s normal ROADS="$deform_boxes"
-
-label="crowd ws office 640x360 ($crowd_clients clients)"
-log "$label: $seconds s"
-before="$(tm_rss)"
-res="$(crowd --clients "$crowd_clients" --seconds "$seconds" --json || true)"
-tm_alive || died "$label" "$before"
-after="$(tm_rss)"
-if [[ -z "$res" ]]; then
-  rows+=("| $label | no frames | | | | see stderr | $before | $after |")
-else
-  rows+=("$(tm_json '"| %s | %.1f frames/s total (%s per client) | %.0f ms | %.0f ms | %.0f ms | %d errors, %d refused (1013) | %s | %s |" % (sys.argv[1], d["fps_total"], ", ".join("%.1f" % f for f in d["fps_per_client"]), d["latency_ms"]["p50"], d["latency_ms"]["p99"], d["latency_ms"]["max"], len(d["errors"]), d["refused"], sys.argv[2], sys.argv[3])' <<<"$res" "$label" "$before" "$after")")
-  tm_json '"\n".join(d["errors"])' <<<"$res" | sed '/^$/d' >&2
+if want read; then wrk_row "read mix (c=$connections)" read.lua "$connections" "$seconds" 2s normal; fi
+if want clusters; then wrk_row "clusters geo+layout (c=$connections)" clusters.lua "$connections" "$seconds" 2s normal; fi
+if want deform; then
+  wrk_row "deform focus $deform_roads, cached (c=$connections)" deform.lua "$connections" "$seconds" 2s normal ROADS="$deform_boxes"
 fi
 
-wrk_row "overload: deform (c=$overload_connections, ${overload_seconds} s, timeout 5 s)" deform.lua \
-  "$overload_connections" "$overload_seconds" 5s overload ROADS="$deform_boxes"
-sleep 1
-tm_get /healthz >/dev/null || log "after the overload /healthz did not answer 200"
-tm_alive || died "after overload" "$(tm_rss)"
+# crowd_row: the crowd WebSocket clients, one row.
+crowd_row() {
+  local label before res after
+  label="crowd ws office 640x360 ($crowd_clients clients)"
+  log "$label: $seconds s"
+  before="$(tm_rss)"
+  res="$(crowd --clients "$crowd_clients" --seconds "$seconds" --json || true)"
+  tm_alive || died "$label" "$before"
+  after="$(tm_rss)"
+  if [[ -z "$res" ]]; then
+    rows+=("| $label | no frames | | | | see stderr | $before | $after |")
+  else
+    rows+=("$(tm_json '"| %s | %.1f frames/s total (%s per client) | %.0f ms | %.0f ms | %.0f ms | %d errors, %d refused (1013) | %s | %s |" % (sys.argv[1], d["fps_total"], ", ".join("%.1f" % f for f in d["fps_per_client"]), d["latency_ms"]["p50"], d["latency_ms"]["p99"], d["latency_ms"]["max"], len(d["errors"]), d["refused"], sys.argv[2], sys.argv[3])' <<<"$res" "$label" "$before" "$after")")
+    tm_json '"\n".join(d["errors"])' <<<"$res" | sed '/^$/d' >&2
+  fi
+}
+if want crowd; then crowd_row; fi
 
-printf '%s\n' "| load | requests/s (or frames/s) | p50 | p99 | max | errors | RSS before | RSS after |" \
-  "|---|---:|---:|---:|---:|---|---:|---:|" "${rows[@]}"
+if want overload; then
+  wrk_row "overload: deform (c=$overload_connections, ${overload_seconds} s, timeout 5 s)" deform.lua \
+    "$overload_connections" "$overload_seconds" 5s overload ROADS="$deform_boxes"
+  sleep 1
+  tm_get /healthz >/dev/null || log "after the overload /healthz did not answer 200"
+  tm_alive || died "after overload" "$(tm_rss)"
+fi
+
+print_table
