@@ -303,6 +303,8 @@ std::size_t HttpSession::body_limit() const {
 }
 
 HttpSession::WriteAccess HttpSession::check_write_access(const Request& header) const {
+  // Reads are never write routes: skip the route match (hot path).
+  if (header.method() == http::verb::get || header.method() == http::verb::head) return WriteAccess::not_needed;
   auto target = parse_target(header.target());
   if (!target) return WriteAccess::not_needed;  // answered 400 once read
   api::Request probe;

@@ -46,3 +46,42 @@ TEST(JsonOut, FlatPositions) {
 
 }  // namespace
 }  // namespace tourmap::api
+
+namespace tourmap::api {
+namespace {
+
+std::string shortest(double v) {
+  std::string out;
+  append_double(out, v);
+  return out;
+}
+
+// append_double: the shortest text that reads back as the same double, in nlohmann's style.
+TEST(JsonOut, DoublesAreShortestAndRoundTrip) {
+  EXPECT_EQ(shortest(16.3839302), "16.3839302");
+  EXPECT_EQ(shortest(48.0), "48.0");
+  EXPECT_EQ(shortest(-0.5), "-0.5");
+  EXPECT_EQ(shortest(NAN), "null");
+  EXPECT_EQ(shortest(-INFINITY), "null");
+  for (double v : {0.1 + 0.2, 1e300, -1e-300, 123456789.123456789, 5e-324, 1.7976931348623157e308}) {
+    const auto text = shortest(v);
+    EXPECT_EQ(nlohmann::json::parse(text).get<double>(), v) << text;
+    EXPECT_LE(text.size(), nlohmann::json(v).dump().size()) << text;
+  }
+}
+
+// append_string appends (never overwrites) and falls back to U+FFFD on bytes that are not UTF-8.
+TEST(JsonOut, StringsAppendAfterExistingTextAndRepairBadUtf8) {
+  std::string out = "{\"a\":";
+  append_string(out, "Stephansdom");
+  out += ",\"b\":";
+  const char raw[] = "Caf\xc3\xa9 \xff end\x01";
+  append_string(out, std::string_view(raw, sizeof raw - 1));
+  out += "}";
+  auto doc = nlohmann::json::parse(out);
+  EXPECT_EQ(doc["a"], "Stephansdom");
+  EXPECT_EQ(doc["b"], "Caf\xc3\xa9 \xef\xbf\xbd end\x01");
+}
+
+}  // namespace
+}  // namespace tourmap::api

@@ -3,6 +3,10 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
+#include <thread>
+#include <vector>
+
 namespace tourmap::server {
 namespace {
 
@@ -59,6 +63,34 @@ TEST(Respond, HeadKeepsLengthWithoutBody) {
   auto res = finish_response(api::json_response({{"a", 1}}), facts, config);
   EXPECT_TRUE(res.body().empty());
   EXPECT_EQ(res[http::field::content_length], "7");
+}
+
+}  // namespace
+}  // namespace tourmap::server
+
+namespace tourmap::server {
+namespace {
+
+// gzip_compress keeps one stream per thread and level: streams are reset between bodies, levels
+// do not leak into each other, and threads do not share state.
+TEST(Gzip, ReusedStreamsAcrossLevelsAndThreads) {
+  const std::string a(5000, 'a'), b = "tourmap " + std::string(3000, 'b');
+  for (int round = 0; round < 3; ++round)
+    for (int level : {1, 5, 9}) {
+      EXPECT_EQ(gzip_decompress(gzip_compress(a, level)), a);
+      EXPECT_EQ(gzip_decompress(gzip_compress(b, level)), b);
+      EXPECT_EQ(gzip_decompress(gzip_compress("", level)), "");
+    }
+  std::vector<std::thread> threads;
+  std::atomic<int> bad{0};
+  for (int t = 0; t < 4; ++t)
+    threads.emplace_back([&, t] {
+      const std::string mine(1000 + 100 * t, static_cast<char>('c' + t));
+      for (int i = 0; i < 200; ++i)
+        if (gzip_decompress(gzip_compress(mine, 1 + (i % 9))) != mine) ++bad;
+    });
+  for (auto& th : threads) th.join();
+  EXPECT_EQ(bad.load(), 0);
 }
 
 }  // namespace
