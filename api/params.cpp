@@ -108,6 +108,9 @@ nlohmann::json parse_json_body(const Request& req) {
     return doc;
   } catch (const nlohmann::json::parse_error& e) {
     throw ApiError(400, "invalid_json", "body is not valid JSON (at byte " + std::to_string(e.byte) + ")", "body");
+  } catch (const nlohmann::json::out_of_range&) {
+    // The parser reports a number beyond double's range (e.g. 1e309) as out_of_range 406.
+    throw ApiError(400, "invalid_json", "body holds a number too large for a double", "body");
   }
 }
 

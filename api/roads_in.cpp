@@ -12,10 +12,16 @@ ApiError bad(const std::string& field, const std::string& message) {
   return ApiError(400, "invalid_geojson", field + ": " + message, field);
 }
 
+// "type" when it is a string, else "" (json::value("type", "") throws type_error for others).
+std::string type_of(const nlohmann::json& obj) {
+  auto it = obj.find("type");
+  return it != obj.end() && it->is_string() ? it->get<std::string>() : std::string();
+}
+
 }  // namespace
 
 model::RoadNetwork parse_inline_roads(const nlohmann::json& fc, const std::string& field, std::size_t max_vertices) {
-  if (!fc.is_object() || fc.value("type", "") != "FeatureCollection" || !fc.contains("features") ||
+  if (!fc.is_object() || type_of(fc) != "FeatureCollection" || !fc.contains("features") ||
       !fc["features"].is_array())
     throw bad(field, "expected a GeoJSON FeatureCollection of LineStrings");
   model::RoadNetwork net;
@@ -28,7 +34,7 @@ model::RoadNetwork parse_inline_roads(const nlohmann::json& fc, const std::strin
     if (!f.is_object() || !f.contains("geometry") || !f["geometry"].is_object())
       throw bad(f_field, "a Feature with a geometry");
     const auto& g = f["geometry"];
-    auto type = g.value("type", "");
+    auto type = type_of(g);
     std::vector<const nlohmann::json*> lines;
     if (!g.contains("coordinates") || !g["coordinates"].is_array()) throw bad(f_field + ".geometry", "missing coordinates");
     if (type == "LineString") {

@@ -37,7 +37,8 @@ WsEndpoint EventHub::endpoint() {
   };
   ep.on_text = [](const std::shared_ptr<WsSession>& s, const std::string& text) {
     auto msg = nlohmann::json::parse(text, nullptr, false);
-    if (msg.is_object() && msg.value("type", "") == "ping") {
+    // Not value("type", ""): it throws for a non-string type, and nothing above on_text catches.
+    if (msg.is_object() && msg.contains("type") && msg["type"] == "ping") {
       s->send_text(R"({"type":"pong"})");
       return;
     }

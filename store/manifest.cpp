@@ -24,7 +24,7 @@ Manifest parse_manifest(const std::string& json_text, const std::string& data_di
   nlohmann::json doc;
   try {
     doc = nlohmann::json::parse(json_text);
-  } catch (const nlohmann::json::parse_error& e) {
+  } catch (const nlohmann::json::exception& e) {  // parse_error, or out_of_range for a number like 1e309
     throw std::invalid_argument(std::string("manifest is not valid JSON: ") + e.what());
   }
   if (!doc.is_object()) throw std::invalid_argument("manifest must be a JSON object");

@@ -74,6 +74,8 @@ void finish_mesh(const std::string& file, MergedMesh&& mesh, const LoadOptions& 
   model.indices = std::move(mesh.indices);
   if (options.weld) {
     weld_vertices(model);
+    // Welding drops triangles whose corners merged: a mesh of only such triangles has none left.
+    if (model.indices.empty()) fail(file, "has no triangle mesh in its scene (every triangle is degenerate)");
     model.normals = smooth_normals(model.positions, model.indices);
   } else if (std::find(mesh.has_normal.begin(), mesh.has_normal.end(), 0) != mesh.has_normal.end()) {
     const std::vector<Vec3> computed = smooth_normals(model.positions, model.indices);

@@ -107,6 +107,10 @@ ClusterHierarchy deserialize_hierarchy(std::string_view bytes, std::size_t verte
     v = r.get<double>("stats");
     if (!std::isfinite(v) || v < 0) fail("a negative or non-finite statistic");
   }
+  // The first five are counts, converted to size_t below: beyond 2^53 the conversion may be
+  // undefined (and no count is that large).
+  for (std::size_t i = 0; i < 5; ++i)
+    if (stats[i] > 9007199254740992.0) fail("a count statistic beyond 2^53");
   auto& s = h.stats;
   s.leaf_clusters = static_cast<std::size_t>(stats[0]);
   s.clusters = static_cast<std::size_t>(stats[1]);

@@ -142,7 +142,8 @@ SkinnedModel loop_once(const SkinnedModel& m) {
     if (!mesh.add_face(vh[0], vh[1], vh[2]).is_valid()) {
       for (auto& h : vh) {
         source.push_back(source[static_cast<std::size_t>(h.idx())]);
-        h = mesh.add_vertex(mesh.point(h));
+        const Mesh::Point corner = mesh.point(h);  // a copy: add_vertex may reallocate the points
+        h = mesh.add_vertex(corner);
       }
       mesh.add_face(vh[0], vh[1], vh[2]);  // isolated corners: always accepted
     }

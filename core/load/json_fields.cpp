@@ -66,6 +66,9 @@ nlohmann::json parse_json(std::string_view text, const std::string& source) {
     return nlohmann::json::parse(text);
   } catch (const nlohmann::json::parse_error& e) {
     throw LoadError(source + " byte " + std::to_string(e.byte), "invalid JSON");
+  } catch (const nlohmann::json::out_of_range&) {
+    // The parser reports a number beyond double's range (e.g. 1e309) as out_of_range 406.
+    throw LoadError(source, "invalid JSON: a number is too large for a double");
   }
 }
 

@@ -19,6 +19,26 @@ namespace {
 using LocationIndex = osmium::index::map::FlexMem<osmium::unsigned_object_id_type, osmium::Location>;
 using LocationHandler = osmium::handler::NodeLocationsForWays<LocationIndex>;
 
+// The value of tag `key`, or nullptr, reading the tag list's bytes (key NUL value NUL ...)
+// strictly within the list. TagList::operator[] walks the list with strchr and trusts its
+// shape, but libosmium's PBF reader copies string-table entries with NUL bytes inside them as
+// they are: the walk then gets out of step and runs past the end of the list (a heap overread
+// on a crafted .osm.pbf). Here such a list simply ends at its last complete pair.
+const char* tag_value(const osmium::TagList& tags, const char* key) {
+  const char* p = reinterpret_cast<const char*>(tags.data()) + sizeof(osmium::TagList);
+  const char* const end = reinterpret_cast<const char*>(tags.data()) + tags.byte_size();
+  while (p < end) {
+    const auto* key_end = static_cast<const char*>(std::memchr(p, '\0', static_cast<std::size_t>(end - p)));
+    if (!key_end || key_end + 1 >= end) return nullptr;
+    const char* value = key_end + 1;
+    const auto* value_end = static_cast<const char*>(std::memchr(value, '\0', static_cast<std::size_t>(end - value)));
+    if (!value_end) return nullptr;
+    if (std::strcmp(p, key) == 0) return value;
+    p = value_end + 1;
+  }
+  return nullptr;
+}
+
 class RoadCollector : public osmium::handler::Handler {
  public:
   explicit RoadCollector(OsmRoadStats& stats) : stats_(stats) {}
@@ -27,14 +47,14 @@ class RoadCollector : public osmium::handler::Handler {
 
   void way(const osmium::Way& way) {
     ++stats_.osm_ways;
-    const char* highway = way.tags()["highway"];
+    const char* highway = tag_value(way.tags(), "highway");
     if (!highway) return;
-    const char* area = way.tags()["area"];
+    const char* area = tag_value(way.tags(), "area");
     if (!is_road_class(highway) || (area && std::strcmp(area, "yes") == 0)) {
       ++stats_.skipped_ways;
       return;
     }
-    const char* name = way.tags()["name"];
+    const char* name = tag_value(way.tags(), "name");
     model::RoadWay piece;
     auto flush = [&] {
       if (piece.nodes.size() >= 2) net_.ways.push_back(piece);

@@ -791,7 +791,8 @@ Attempt attempt_routing(const LayoutGraph& g, const std::vector<XY>& start, cons
     for (auto [v, port] : {std::pair{c.nodes.front(), ports_of[ci][0]}, std::pair{c.nodes.back(), ports_of[ci][1]}}) {
       port_chain[v][port] = -1;
       auto& list = anchor_ports[v];
-      list.erase(std::remove_if(list.begin(), list.end(), [&](auto e) { return e.first == port; }), list.end());
+      // Captured by copy: clang 14 cannot capture structured bindings by reference.
+      list.erase(std::remove_if(list.begin(), list.end(), [port = port](auto e) { return e.first == port; }), list.end());
     }
     grid_path[ci].clear();
   };

@@ -1,5 +1,6 @@
 #include "api/geojson.hpp"
 #include "api/geojson_in.hpp"
+#include "api/roads_in.hpp"
 
 #include <gtest/gtest.h>
 
@@ -53,6 +54,23 @@ TEST(GeoJsonIn, VertexLimitIs413) {
     FAIL();
   } catch (const ApiError& e) {
     EXPECT_EQ(e.status, 413);
+  }
+}
+
+// Found with fuzz_roads_in (tests/fuzz/corpus/roads_in/regression-type-number): a "type" that
+// is not a string made json::value("type", "") throw type_error out of parse_inline_roads, so
+// the deform endpoints answered 500 instead of 400.
+TEST(GeoJsonIn, InlineRoadsWithNonStringTypesAre400) {
+  for (const char* doc : {R"({"type":1,"features":[]})", R"({"type":null,"features":[]})",
+                          R"({"type":"FeatureCollection","features":[{"type":"Feature","geometry":
+                              {"type":["LineString"],"coordinates":[[16.36,48.2],[16.37,48.2]]}}]})"}) {
+    try {
+      parse_inline_roads(json::parse(doc), "roads", 100);
+      ADD_FAILURE() << "no ApiError for " << doc;
+    } catch (const ApiError& e) {
+      EXPECT_EQ(e.status, 400) << doc;
+      EXPECT_EQ(e.field.rfind("roads", 0), 0u) << e.field;
+    }
   }
 }
 

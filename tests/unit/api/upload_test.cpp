@@ -14,7 +14,7 @@ namespace {
 TEST(Upload, SniffsOsmFormats) {
   EXPECT_EQ(sniff_osm_extension(std::string("\x1f\x8b\x08\x00", 4)), "osm.gz");
   EXPECT_EQ(sniff_osm_extension("BZh91AY&SY"), "osm.bz2");
-  EXPECT_EQ(sniff_osm_extension(std::string("\x00\x00\x00\x0d\x0a\x09OSMHeader\x18\x7c", 19)), "osm.pbf");
+  EXPECT_EQ(sniff_osm_extension(std::string("\x00\x00\x00\x0d\x0a\x09OSMHeader\x18\x7c", 17)), "osm.pbf");
   EXPECT_EQ(sniff_osm_extension("<?xml version='1.0'?><osm version='0.6'/>"), "osm");
   EXPECT_EQ(sniff_osm_extension("\n  <osm version='0.6'/>"), "osm");
   EXPECT_EQ(sniff_osm_extension("name,lon,lat\n"), "");

@@ -458,6 +458,23 @@ TEST(GltfLoaderErrors, StaticFileHasNoSkin) {
   EXPECT_NE(msg.find(path + ": has no skin"), std::string::npos) << msg;
 }
 
+// Found by fuzz_gltf_json (tests/fuzz/corpus/gltf_json/regression-degenerate): one mutated
+// byte turned the POSITION accessor's "bufferView" key into "bunferView", so every vertex read
+// as (0, 0, 0) (an accessor without a buffer view holds zeros). Welding merged them and dropped
+// every triangle, and the loader returned a model without triangles or vertices instead of
+// its "no triangle mesh" error. This is that file cut down to the accessor.
+TEST(GltfLoaderErrors, MeshWhoseTrianglesAllCollapse) {
+  test::TempDir dir;
+  const std::string path = dir.write("zeros.gltf", R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],
+    "nodes":[{"mesh":0}],"meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],
+    "accessors":[{"componentType":5126,"count":6,"type":"VEC3"}]})");
+  const std::string msg = load_error_of([&] { load_static_model(path); });
+  EXPECT_NE(msg.find("has no triangle mesh"), std::string::npos) << msg;
+  LoadOptions unwelded;
+  unwelded.weld = false;  // without welding the file's two (degenerate) triangles stay
+  EXPECT_EQ(load_static_model(path, unwelded).triangle_count(), 2u);
+}
+
 TEST(GltfLoaderErrors, FileWithoutMesh) {
   test::TempDir dir;
   const std::string path = dir.write("empty.gltf", R"({"asset":{"version":"2.0"},"nodes":[{"name":"a"}]})");

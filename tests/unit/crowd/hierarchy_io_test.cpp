@@ -103,6 +103,24 @@ TEST(HierarchyIo, CorruptFieldsThrow) {
   EXPECT_NO_THROW(deserialize_hierarchy(bytes));
 }
 
+// Found by fuzz_hierarchy_io (tests/fuzz/corpus/hierarchy_io/regression-stat-cast): its
+// base_triangles statistic was 3.291009114642412e+64, finite and >= 0, so it passed the check
+// and was converted to size_t, which is undefined behaviour beyond size_t's range (UBSan
+// float-cast-overflow). Count statistics beyond 2^53 are now refused like any corrupt field.
+TEST(HierarchyIo, CountStatisticBeyondSizeTRangeThrows) {
+  const std::string good = serialize_hierarchy(arm_hierarchy());
+  for (std::size_t field = 0; field < 5; ++field) {  // leaf_clusters .. clusters_short_of_half
+    std::string bytes = good;
+    patch<double>(bytes, 20 + 8 * field, 3.291009114642412e+64);
+    EXPECT_THROW(deserialize_hierarchy(bytes, 656), std::runtime_error) << "statistic " << field;
+    patch<double>(bytes, 20 + 8 * field, 9007199254740992.0);  // 2^53: still a count
+    EXPECT_NO_THROW(deserialize_hierarchy(bytes, 656)) << "statistic " << field;
+  }
+  std::string bytes = good;
+  patch<double>(bytes, 20 + 8 * 5, 1e300);  // pose_selection_ms stays a double: no limit
+  EXPECT_EQ(deserialize_hierarchy(bytes, 656).stats.pose_selection_ms, 1e300);
+}
+
 TEST(HierarchyIo, EmptyHierarchyRoundTrips) {
   const ClusterHierarchy empty;
   const ClusterHierarchy back = deserialize_hierarchy(serialize_hierarchy(empty));

@@ -92,6 +92,18 @@ TEST(MetroLoom, NonStringTypesAreLoadErrors) {
                LoadError);
 }
 
+// The fuzzers' number overflow (see Params.JsonNumberTooLargeForADoubleIs400) in the loaders'
+// load::parse_json: a LOOM or POI file holding 1e309 threw nlohmann's out_of_range, not the
+// LoadError the loaders promise.
+TEST(MetroLoom, NumberTooLargeForADoubleIsALoadError) {
+  EXPECT_THROW(parse_metro_loom(R"({"type":"FeatureCollection","features":[{"type":"Feature",
+    "properties":{"id":"a"},"geometry":{"type":"Point","coordinates":[16.3,48.11e308]}}]})",
+                                "big.json"),
+               LoadError);
+  EXPECT_THROW(load::parse_pois_geojson(R"({"type":"FeatureCollection","features":[1e309]})", "p.json"), LoadError);
+  EXPECT_THROW(load::parse_pois_js_array("var x = [{\"name\": \"a\", \"lon\": -1e999, \"lat\": 0}];", "p.js"), LoadError);
+}
+
 TEST(MetroStationCsvs, LoadsLondonAndMergesParallelLines) {
   auto net = load_metro_station_csvs(data_file("metro/london.stations.csv"), data_file("metro/london.lines.csv"),
                                      data_file("metro/london.connections.csv"));

@@ -206,5 +206,12 @@ TEST(Manifest, ParsesAndResolvesPaths) {
                std::invalid_argument);
 }
 
+// Found by fuzz_manifest (its input first): a number beyond double's range made the parser
+// throw nlohmann's out_of_range, not the documented std::invalid_argument.
+TEST(Manifest, NumberTooLargeForADoubleIsInvalidArgument) {
+  EXPECT_THROW(parse_manifest("-922337429496721.7976931348623157e309962036854775808", "/d"), std::invalid_argument);
+  EXPECT_THROW(parse_manifest(R"({"cities":[],"roads":[{"id":"r","name":1e999}]})", "/d"), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace tourmap::store

@@ -1,0 +1,31 @@
+// OSM road imports (core/load/osm_roads: load_osm_roads through libosmium, as the importer
+// calls it) on a file rewritten for every input. Built twice: fuzz_osm_xml writes roads.osm
+// (XML), fuzz_osm_pbf writes roads.osm.pbf; libosmium picks the format from the extension.
+// Clean error: load::LoadError (the loader wraps libosmium's exceptions).
+
+#include "fuzz_common.hpp"
+
+#include "load/load_error.hpp"
+#include "load/osm_roads.hpp"
+
+#ifndef TOURMAP_FUZZ_OSM_FILE
+#error "define TOURMAP_FUZZ_OSM_FILE (roads.osm or roads.osm.pbf)"
+#endif
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  using namespace tourmap;
+  const std::string path = fuzz::ScratchDir::get().write(TOURMAP_FUZZ_OSM_FILE, fuzz::as_view(data, size));
+  try {
+    load::OsmRoadStats stats;
+    const auto net = load::load_osm_roads(path, &stats);
+    for (const auto& e : net.edges)
+      FUZZ_CHECK(e.from < net.nodes.size() && e.to < net.nodes.size() && e.way < net.ways.size());
+    for (const auto& w : net.ways) {
+      FUZZ_CHECK(w.nodes.size() >= 2);
+      for (auto n : w.nodes)
+        FUZZ_CHECK(n < net.nodes.size());
+    }
+  } catch (const load::LoadError&) {
+  }
+  return 0;
+}
