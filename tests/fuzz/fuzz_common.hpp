@@ -43,11 +43,16 @@ class ScratchDir {
   // Writes `content` to `name` (truncating) and returns the full path.
   std::string write(const std::string& name, std::string_view content) const {
     auto full = path_ / name;
-    std::ofstream out(full, std::ios::binary | std::ios::trunc);
-    out.write(content.data(), static_cast<std::streamsize>(content.size()));
-    out.close();
-    if (!out) throw std::runtime_error("fuzz harness: cannot write " + full.string());
-    return full.string();
+    for (int attempt = 0;; ++attempt) {
+      std::ofstream out(full, std::ios::binary | std::ios::trunc);
+      out.write(content.data(), static_cast<std::streamsize>(content.size()));
+      out.close();
+      if (out) return full.string();
+      // Someone cleaning the temp directory may have removed ours: make it again, once.
+      std::error_code ec;
+      if (attempt > 0 || !std::filesystem::create_directories(full.parent_path(), ec))
+        throw std::runtime_error("fuzz harness: cannot write " + full.string());
+    }
   }
   ScratchDir(const ScratchDir&) = delete;
   ScratchDir& operator=(const ScratchDir&) = delete;
