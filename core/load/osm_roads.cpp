@@ -115,7 +115,16 @@ model::RoadNetwork load_osm_roads(const std::string& path, OsmRoadStats* stats_o
   if (!std::filesystem::is_regular_file(path)) throw LoadError(path, "no such file");
   OsmRoadStats stats;
   try {
-    osmium::io::Reader reader(path, osmium::osm_entity_bits::node | osmium::osm_entity_bits::way);
+    // libosmium reads a .pbf through a descriptor of its own that it closes only after a
+    // successful read: every PBF that failed to parse leaked one (a server importing uploads
+    // would run out). A PBF is therefore read from memory: no descriptor to leak.
+    osmium::io::File file(path);
+    std::string pbf;
+    if (file.format() == osmium::io::file_format::pbf) {
+      pbf = read_file(path);
+      file = osmium::io::File(pbf.data(), pbf.size(), "pbf");
+    }
+    osmium::io::Reader reader(file, osmium::osm_entity_bits::node | osmium::osm_entity_bits::way);
     LocationIndex index;
     LocationHandler locations(index);
     locations.ignore_errors();  // ways may reference nodes outside the extract

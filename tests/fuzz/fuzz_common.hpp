@@ -78,6 +78,16 @@ class ScratchDir {
   std::filesystem::path path_;
 };
 
+// Open file descriptors of this process (Linux: /proc/self/fd), to catch loaders that leak one.
+inline std::size_t open_fds() {
+  std::size_t n = 0;
+  std::error_code ec;
+  for (auto it = std::filesystem::directory_iterator("/proc/self/fd", ec); !ec && it != std::filesystem::directory_iterator();
+       it.increment(ec))
+    ++n;
+  return n;
+}
+
 // Splits `text` at every occurrence of `sep` (at most `max_parts` parts; the last takes the rest).
 inline std::vector<std::string_view> split(std::string_view text, std::string_view sep, std::size_t max_parts) {
   std::vector<std::string_view> parts;

@@ -1,7 +1,8 @@
 // OSM road imports (core/load/osm_roads: load_osm_roads through libosmium, as the importer
 // calls it) on a file rewritten for every input. Built twice: fuzz_osm_xml writes roads.osm
 // (XML), fuzz_osm_pbf writes roads.osm.pbf; libosmium picks the format from the extension.
-// Clean error: load::LoadError (the loader wraps libosmium's exceptions).
+// Clean error: load::LoadError (the loader wraps libosmium's exceptions). Either way no file
+// descriptor may stay open (a server importing uploads would run out).
 
 #include "fuzz_common.hpp"
 
@@ -15,6 +16,7 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace tourmap;
   const std::string path = fuzz::ScratchDir::get().write(TOURMAP_FUZZ_OSM_FILE, fuzz::as_view(data, size));
+  const std::size_t fds = fuzz::open_fds();
   try {
     load::OsmRoadStats stats;
     const auto net = load::load_osm_roads(path, &stats);
@@ -27,5 +29,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     }
   } catch (const load::LoadError&) {
   }
+  FUZZ_CHECK(fuzz::open_fds() <= fds);
   return 0;
 }
