@@ -6,6 +6,7 @@
 #include "crowd/subdivide.hpp"
 #include "load/file.hpp"
 #include "store/repo.hpp"
+#include "util/elapsed.hpp"
 #include "util/hash.hpp"
 
 #include <algorithm>
@@ -19,9 +20,7 @@ namespace {
 
 constexpr int kHierarchyFormat = 2;  // bump when the builder's output changes (2: measured error radii)
 
-double ms_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
+using util::ms_since;
 
 // The model file's content hash: a changed file never reuses a cached hierarchy.
 std::string file_hash(const std::string& path) {

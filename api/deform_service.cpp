@@ -6,6 +6,7 @@
 #include "roads_in.hpp"
 
 #include "grid/grid.hpp"
+#include "util/elapsed.hpp"
 #include "util/hash.hpp"
 
 #include <chrono>
@@ -14,8 +15,8 @@
 namespace tourmap::api {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
+using util::Clock;
+using util::ms_since;
 
 std::uint64_t edge_key(std::uint32_t a, std::uint32_t b) {
   if (a > b) std::swap(a, b);

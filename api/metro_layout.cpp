@@ -7,6 +7,7 @@
 #include "metro/octilinear_mip.hpp"
 #include "metro/prelayout.hpp"
 #include "metro/warp.hpp"
+#include "util/elapsed.hpp"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/convex_hull_2.h>
@@ -19,8 +20,8 @@ namespace tourmap::api {
 namespace {
 
 constexpr int kLayoutVersion = 4;
-using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
+using util::Clock;
+using util::ms_since;
 
 ApiError bad(const std::string& field, const std::string& message) {
   return ApiError(400, "invalid_parameter", field + ": " + message, field);

@@ -7,15 +7,25 @@
 #include "poi/active_clusters.hpp"
 #include "poi/serialize.hpp"
 #include "store/repo.hpp"
+#include "util/elapsed.hpp"
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 
 namespace tourmap::api {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
+using util::Clock;
+using util::ms_since;
+
+// The compute time goes into a Server-Timing header, not the body: a cacheable body must be the
+// same for the same answer, or its ETag never repeats and If-None-Match never gives a 304.
+void set_server_timing(Response& r, Clock::time_point started) {
+  char text[48];
+  std::snprintf(text, sizeof text, "compute;dur=%.2f", ms_since(started));
+  r.headers.emplace_back("Server-Timing", text);
+}
 
 ApiError bad(const std::string& field, const std::string& message) {
   return ApiError(400, "invalid_parameter", field + ": " + message, field);
@@ -244,9 +254,9 @@ Response MetroService::visual_worth(const Request& req) {
                               {"values", std::move(values)},
                               {"max", max},
                               {"pois", vw.size()},
-                              {"stations", std::move(stations)},
-                              {"took_ms", ms_since(started)}});
+                              {"stations", std::move(stations)}});
   r.cacheable = true;
+  set_server_timing(r, started);
   return r;
 }
 
@@ -335,10 +345,9 @@ Response MetroService::clusters(const Request& req) {
   writer.append_list(out, active.previews, active.prominence.data() + active.top.size());
   out += ",\"space\":";
   append_string(out, space);
-  out += ",\"took_ms\":";
-  append_double(out, ms_since(started));
   out += '}';
   r.cacheable = true;
+  set_server_timing(r, started);
   return r;
 }
 

@@ -3,15 +3,16 @@
 namespace tourmap::store {
 
 std::optional<CachedResult> cache_get(Db& db, const std::string& key) {
-  auto st = db.prepare("SELECT content_type, body FROM result_cache WHERE key = ?");
-  st.bind(1, key);
-  if (!st.step()) return std::nullopt;
-  auto blob = st.blob(1);
-  CachedResult out{st.text(0), std::string(blob.begin(), blob.end())};
-  st.reset();
-  db.prepare(
-        "UPDATE result_cache SET hits = hits + 1, last_used = strftime('%Y-%m-%dT%H:%M:%fZ', 'now') WHERE key = ?")
-      .bind(1, key)
+  CachedResult out;
+  {
+    auto st = db.cached("SELECT content_type, body FROM result_cache WHERE key = ?");
+    st->bind(1, key);
+    if (!st->step()) return std::nullopt;
+    auto blob = st->blob(1);
+    out = CachedResult{st->text(0), std::string(blob.begin(), blob.end())};
+  }
+  db.cached("UPDATE result_cache SET hits = hits + 1, last_used = strftime('%Y-%m-%dT%H:%M:%fZ', 'now') WHERE key = ?")
+      ->bind(1, key)
       .run();
   return out;
 }

@@ -146,10 +146,10 @@ std::optional<model::CityInfo> find_city(Db& db, const std::string& id) {
 }
 
 std::optional<std::int64_t> city_version(Db& db, const std::string& id) {
-  auto st = db.prepare("SELECT version FROM cities WHERE id = ?");
-  st.bind(1, id);
-  if (!st.step()) return std::nullopt;
-  return st.int64(0);
+  auto st = db.cached("SELECT version FROM cities WHERE id = ?");  // on every city request
+  st->bind(1, id);
+  if (!st->step()) return std::nullopt;
+  return st->int64(0);
 }
 
 std::optional<model::City> load_city(Db& db, const std::string& id) {

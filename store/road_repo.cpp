@@ -74,10 +74,10 @@ std::vector<model::RoadNetworkInfo> list_road_networks(Db& db) {
 }
 
 std::optional<model::RoadNetworkInfo> find_road_network(Db& db, const std::string& id) {
-  auto st = db.prepare(std::string(kRoadSelect) + " WHERE id = ?");
-  st.bind(1, id);
-  if (!st.step()) return std::nullopt;
-  return read_info(st);
+  auto st = db.cached(std::string(kRoadSelect) + " WHERE id = ?");  // on every road request
+  st->bind(1, id);
+  if (!st->step()) return std::nullopt;
+  return read_info(*st);
 }
 
 std::optional<std::int64_t> road_network_version(Db& db, const std::string& id) {

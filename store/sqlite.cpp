@@ -95,7 +95,16 @@ Db::Db(const std::string& path, bool read_only) : path_(path) {
   exec("PRAGMA foreign_keys=ON");
 }
 
-Db::~Db() { sqlite3_close_v2(db_); }
+Db::~Db() {
+  cached_.clear();
+  sqlite3_close_v2(db_);
+}
+
+CachedStmt Db::cached(std::string_view sql) {
+  auto it = cached_.find(sql);
+  if (it == cached_.end()) it = cached_.emplace(std::string(sql), Stmt(db_, sql)).first;
+  return CachedStmt(it->second);
+}
 
 void Db::exec(std::string_view sql) {
   char* err = nullptr;

@@ -3,6 +3,8 @@
 // Written here because the C API is the well-kept library; this only adds ownership and errors.
 
 #include <cstdint>
+#include <functional>
+#include <map>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -58,6 +60,22 @@ class Stmt {
   sqlite3_stmt* stmt_;
 };
 
+// A statement its connection keeps prepared (Db::cached). The handle resets it and clears its
+// bindings when it goes, so the statement never stays mid-step holding the connection's read
+// snapshot (later reads on the connection would see old data).
+class CachedStmt {
+ public:
+  explicit CachedStmt(Stmt& stmt) : stmt_(&stmt) {}
+  ~CachedStmt() { stmt_->reset(); }
+  CachedStmt(const CachedStmt&) = delete;
+  CachedStmt& operator=(const CachedStmt&) = delete;
+  Stmt& operator*() const { return *stmt_; }
+  Stmt* operator->() const { return stmt_; }
+
+ private:
+  Stmt* stmt_;
+};
+
 class Db {
  public:
   // Opens (creating if needed) the database at `path` with WAL, foreign keys and a busy timeout.
@@ -68,6 +86,9 @@ class Db {
 
   void exec(std::string_view sql);
   Stmt prepare(std::string_view sql) { return Stmt(db_, sql); }
+  // Prepared on first use and kept by this connection: for the queries on every request's path,
+  // where preparing costs more than running them. One handle per statement at a time.
+  CachedStmt cached(std::string_view sql);
   std::int64_t last_insert_rowid() const;
   // Rows changed by the last INSERT/UPDATE/DELETE.
   std::int64_t changes() const;
@@ -77,6 +98,7 @@ class Db {
  private:
   sqlite3* db_ = nullptr;
   std::string path_;
+  std::map<std::string, Stmt, std::less<>> cached_;  // finalized before the connection closes
 };
 
 // BEGIN IMMEDIATE on construction; ROLLBACK on destruction unless commit() ran.

@@ -6,6 +6,7 @@
 #include "crowd/mesh_topology.hpp"
 #include "crowd/pose_quadric_simplify.hpp"
 #include "crowd/pose_selection.hpp"
+#include "util/elapsed.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -20,11 +21,8 @@
 namespace tourmap::crowd {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
-double ms_since(Clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
+using util::Clock;
+using util::ms_since;
 
 float box_distance(const Box3& a, const Box3& b) {
   const Vec3 gap = (a.min() - b.max()).cwiseMax(b.min() - a.max()).cwiseMax(0.f);

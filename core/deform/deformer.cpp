@@ -1,11 +1,12 @@
 #include "deform/deformer.hpp"
+#include "util/elapsed.hpp"
 
 #include <chrono>
 
 namespace tourmap::deform {
 namespace {
-using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
+using util::Clock;
+using util::ms_since;
 }  // namespace
 
 RunResult run(Prepared& p, const PlanarNetwork& net, const Targets& targets, const RunOptions& options,

@@ -1,4 +1,5 @@
 #include "deform/solver.hpp"
+#include "util/elapsed.hpp"
 
 #include <Eigen/SparseCholesky>
 
@@ -29,8 +30,8 @@ std::shared_ptr<const Prepared::Factor> Prepared::factor(double* factor_ms, bool
 }
 
 namespace {
-using Clock = std::chrono::steady_clock;
-double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
+using util::Clock;
+using util::ms_since;
 }  // namespace
 
 Eigen::VectorXd conjugate_gradient(const SparseMatrix& N, const Eigen::VectorXd& rhs, const Eigen::VectorXd& x0,

@@ -1,6 +1,7 @@
 #include "crowd_renderer_impl.hpp"
 
 #include "egl_context.hpp"
+#include "util/elapsed.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -17,11 +18,8 @@ using detail::DrawItem;
 using detail::GpuInstance;
 using detail::GpuItem;
 
-using Clock = std::chrono::steady_clock;
-
-double ms_since(Clock::time_point t0) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
-}
+using util::Clock;
+using util::ms_since;
 
 const crowd::Vec3 kLightDirection = crowd::Vec3(0.35f, 1.0f, 0.45f).normalized();
 

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <map>
 #include <string>
+#include <utility>
 
 namespace tourmap::test {
 namespace {
@@ -134,6 +135,27 @@ TEST_F(MetroApi, ClustersRespectTheWindowAndChangeWithIt) {
     auto [x, y] = poi_at[rep["id"].get<std::string>()];
     EXPECT_NEAR(rep["position"][0].get<double>(), x, 0.1) << rep;
     EXPECT_NEAR(rep["position"][1].get<double>(), y, 0.1) << rep;
+  }
+}
+
+// Clusters and visual worth are computed per request; their bodies must still repeat, so a
+// client revalidating with If-None-Match gets a 304 (the compute time is in Server-Timing).
+TEST_F(MetroApi, ComputedAnswersRevalidateWithTheirEtag) {
+  const std::pair<std::string, std::string> paths[] = {
+      {"/api/v1/cities/vienna/clusters?m=4&bbox=16.3,48.18,16.4,48.23", "/api/v1/cities/vienna/clusters?m=5"},
+      {"/api/v1/cities/vienna/visual-worth?width=8&height=8", "/api/v1/cities/vienna/visual-worth?width=8&height=9"}};
+  for (const auto& [path, other_path] : paths) {
+    SCOPED_TRACE(path);
+    auto first = live->get(path);
+    ASSERT_EQ(first.status, 200) << first.body;
+    EXPECT_EQ(first.header("server-timing").rfind("compute;dur=", 0), 0u) << first.header("server-timing");
+    const auto etag = first.header("etag");
+    ASSERT_FALSE(etag.empty());
+    auto again = live->get(path, {{"If-None-Match", etag}});
+    EXPECT_EQ(again.status, 304);
+    EXPECT_TRUE(again.body.empty());
+    auto other = live->get(other_path, {{"If-None-Match", etag}});  // another answer: a new body
+    EXPECT_EQ(other.status, 200);
   }
 }
 

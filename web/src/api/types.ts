@@ -334,7 +334,6 @@ export interface VisualWorthRaster {
   values: number[];
   max: number;
   stations: { id: string; worth: number }[];
-  took_ms?: number;
 }
 
 export interface ClusterRepresentative {
@@ -365,7 +364,6 @@ export interface ClustersResponse {
   clusters: PoiCluster[];
   previews: PoiCluster[];
   active: number;
-  took_ms: number;
 }
 
 // ---- Crowd scenes (GET /crowd/scenes, WS /crowd/stream) ----
