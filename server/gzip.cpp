@@ -1,5 +1,6 @@
 #include "gzip.hpp"
 
+#include <libdeflate.h>
 #include <zlib.h>
 
 #include <array>
@@ -10,50 +11,36 @@
 namespace tourmap::server {
 namespace {
 
-// A deflate stream kept per thread and level: deflateInit2 allocates and clears ~256 KiB
-// (window, hash chains, pending buffer), which under the cluster load showed up as malloc, free
-// and malloc_consolidate next to deflate itself; deflateReset only clears the hash heads.
-// (Windows sized to the body, for a smaller state, measured no faster.)
-class Deflater {
- public:
-  explicit Deflater(int level) {
-    // windowBits 15 + 16: gzip wrapper instead of zlib's.
-    if (deflateInit2(&zs_, level, Z_DEFLATED, 15 + 16, 8, Z_DEFAULT_STRATEGY) != Z_OK)
-      throw std::runtime_error("deflateInit2 failed");
-  }
-  ~Deflater() { deflateEnd(&zs_); }
-  Deflater(const Deflater&) = delete;
-  Deflater& operator=(const Deflater&) = delete;
-
-  std::string compress(std::string_view data) {
-    if (deflateReset(&zs_) != Z_OK) throw std::runtime_error("deflateReset failed");
-    std::string out(deflateBound(&zs_, data.size()), '\0');
-    zs_.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(data.data()));
-    zs_.avail_in = static_cast<uInt>(data.size());
-    zs_.next_out = reinterpret_cast<Bytef*>(out.data());
-    zs_.avail_out = static_cast<uInt>(out.size());
-    const int rc = deflate(&zs_, Z_FINISH);
-    if (rc != Z_STREAM_END) throw std::runtime_error("deflate failed");
-    out.resize(zs_.total_out);
-    return out;
-  }
-
- private:
-  z_stream zs_{};
+// Bodies are compressed whole (they are in memory already), so libdeflate fits better than
+// zlib's streaming deflate: at the same level it is 2-3x faster for a similar size. One
+// compressor per thread and level, made on first use: allocating one costs ~0.5 MiB of state.
+// zlib stays for decompression (gzip_decompress), which gets streams of unknown size.
+struct CompressorDeleter {
+  void operator()(libdeflate_compressor* c) const { libdeflate_free_compressor(c); }
 };
+using Compressor = std::unique_ptr<libdeflate_compressor, CompressorDeleter>;
 
-Deflater& deflater_for(int level) {
-  // Levels 0..9 (Z_DEFAULT_COMPRESSION, -1, is 6); made on first use in each thread.
-  thread_local std::array<std::unique_ptr<Deflater>, 10> streams;
-  if (level < 0 || level > 9) level = 6;
-  auto& slot = streams[static_cast<std::size_t>(level)];
-  if (!slot) slot = std::make_unique<Deflater>(level);
-  return *slot;
+libdeflate_compressor* compressor_for(int level) {
+  thread_local std::array<Compressor, 13> compressors;  // libdeflate's levels 0..12
+  if (level < 0 || level > 12) level = 6;                // zlib's Z_DEFAULT_COMPRESSION is 6
+  auto& slot = compressors[static_cast<std::size_t>(level)];
+  if (!slot) {
+    slot.reset(libdeflate_alloc_compressor(level));
+    if (!slot) throw std::runtime_error("libdeflate_alloc_compressor failed");
+  }
+  return slot.get();
 }
 
 }  // namespace
 
-std::string gzip_compress(std::string_view data, int level) { return deflater_for(level).compress(data); }
+std::string gzip_compress(std::string_view data, int level) {
+  libdeflate_compressor* c = compressor_for(level);
+  std::string out(libdeflate_gzip_compress_bound(c, data.size()), '\0');
+  const std::size_t n = libdeflate_gzip_compress(c, data.data(), data.size(), out.data(), out.size());
+  if (n == 0) throw std::runtime_error("libdeflate_gzip_compress failed");  // cannot happen: bound
+  out.resize(n);
+  return out;
+}
 
 std::string gzip_decompress(std::string_view data) {
   z_stream zs{};

@@ -1,13 +1,14 @@
 #pragma once
-// gzip (RFC 1952) through zlib, for JSON/GeoJSON bodies when the client accepts it.
+// gzip (RFC 1952) for JSON/GeoJSON bodies when the client accepts it: libdeflate compresses,
+// zlib decompresses.
 
 #include <string>
 #include <string_view>
 
 namespace tourmap::server {
 
-// Reuses a deflate stream per thread and level (see gzip.cpp): ~256 KiB each, two levels per
-// thread with finish_response.
+// Levels 1 (fastest) .. 12 (smallest); others mean 6. Keeps one compressor per thread and level
+// (see gzip.cpp): two levels per thread with finish_response.
 std::string gzip_compress(std::string_view data, int level = 5);
 // For tests: the inverse.
 std::string gzip_decompress(std::string_view data);
