@@ -15,7 +15,7 @@ class CorsPolicy {
   static constexpr const char* kAllowMethods = "GET, POST, PUT, DELETE, OPTIONS";
   static constexpr const char* kAllowHeaders = "Content-Type, Authorization, X-API-Key, If-None-Match";
   // Response headers a cross-origin script may read besides the safelisted ones.
-  static constexpr const char* kExposeHeaders = "ETag, Retry-After, X-Result-Cache";
+  static constexpr const char* kExposeHeaders = "ETag, Retry-After, Server-Timing, X-Result-Cache";
   static constexpr int kMaxAgeS = 600;
 
   // Comma-separated origins, e.g. "https://maps.example.org, http://localhost:5173", or "*"

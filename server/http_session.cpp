@@ -367,7 +367,8 @@ void HttpSession::answer_preflight(const RequestFacts& facts) {
 }
 
 // With CORS on, every response varies by Origin (a cache must not hand one origin's answer
-// to another); an allowed origin gets Access-Control-Allow-Origin, a refused one nothing.
+// to another); an allowed origin gets Access-Control-Allow-Origin (and the headers it may read),
+// a refused one nothing.
 void HttpSession::add_cors_headers(Response& res) const {
   if (!state_.cors.enabled()) return;
   const std::string vary(res[http::field::vary]);
@@ -375,6 +376,7 @@ void HttpSession::add_cors_headers(Response& res) const {
   if (!state_.cors.allows(origin_)) return;
   res.set(http::field::access_control_allow_origin, origin_);
   res.set(http::field::access_control_expose_headers, CorsPolicy::kExposeHeaders);
+  res.set("Timing-Allow-Origin", origin_);  // Server-Timing in the browser's resource timings too
 }
 
 void HttpSession::send(Response&& res, const std::string& route_label) {
