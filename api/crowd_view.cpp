@@ -1,5 +1,7 @@
 #include "crowd_view.hpp"
 
+#include "params.hpp"
+
 #include "crowd/scene.hpp"
 
 #include <cmath>
@@ -8,31 +10,12 @@
 namespace tourmap::api {
 namespace {
 
-[[noreturn]] void bad(const std::string& field, const std::string& message) {
-  throw ApiError(400, "bad_request", message, field);
-}
-
-double number(const nlohmann::json& msg, const char* field, double lo, double hi) {
-  const auto& v = msg.at(field);
-  if (!v.is_number()) bad(field, std::string(field) + " must be a number");
-  const double x = v.get<double>();
-  if (!std::isfinite(x) || x < lo || x > hi)
-    bad(field, std::string(field) + " must be between " + nlohmann::json(lo).dump() + " and " + nlohmann::json(hi).dump());
-  return x;
-}
-
-bool boolean(const nlohmann::json& msg, const char* field) {
-  const auto& v = msg.at(field);
-  if (!v.is_boolean()) bad(field, std::string(field) + " must be true or false");
-  return v.get<bool>();
-}
-
 std::array<float, 3> point(const nlohmann::json& v, const std::string& field, float max_abs) {
-  if (!v.is_array() || v.size() != 3) bad(field, field + " must be [x, y, z]");
+  if (!v.is_array() || v.size() != 3) throw bad(field, "expected [x, y, z]");
   std::array<float, 3> p{};
   for (std::size_t i = 0; i < 3; ++i) {
     if (!v[i].is_number() || !std::isfinite(v[i].get<double>()) || std::abs(v[i].get<double>()) > max_abs)
-      bad(field, field + " must hold three finite numbers within +-" + std::to_string(static_cast<int>(max_abs)) + " m");
+      throw bad(field, "expected three finite numbers within +-" + std::to_string(static_cast<int>(max_abs)) + " m");
     p[i] = v[i].get<float>();
   }
   return p;
@@ -50,53 +33,44 @@ const char* mode_name(CrowdMode m) {
 }
 
 CrowdView apply_view_message(const nlohmann::json& msg, const CrowdView& current, const CrowdLimits& limits) {
-  if (!msg.is_object()) bad("type", "a message must be a JSON object");
-  if (!msg.contains("type") || msg["type"] != "view") bad("type", "type must be \"view\"");
+  if (!msg.is_object()) throw bad("type", "a message must be a JSON object");
+  if (!msg.contains("type") || msg["type"] != "view") throw bad("type", "expected \"view\" (or \"ack\")");
   CrowdView v = current;
   if (msg.contains("scene")) {
-    if (!msg["scene"].is_string()) bad("scene", "scene must be a string");
-    const std::string id = msg["scene"].get<std::string>();
+    const std::string id = json_string(msg["scene"], "scene", 64);
     const auto* spec = crowd::find_scene_spec(id);
-    if (!spec) bad("scene", "unknown scene '" + id.substr(0, 64) + "'");
+    if (!spec) throw bad("scene", "unknown scene '" + shown(id) + "'");
     if (id != v.scene) {  // a new scene: its own defaults
       v.has_camera = false;
       v.count = 0;
     }
     v.scene = id;
   }
-  if (v.scene.empty()) bad("scene", "the first view message must name a scene");
+  if (v.scene.empty()) throw bad("scene", "the first view message must name a scene");
   const auto* spec = crowd::find_scene_spec(v.scene);
-  if (msg.contains("mode")) {
-    const auto& m = msg["mode"];
-    if (m == "nolod") v.mode = CrowdMode::no_lod;
-    else if (m == "vdr") v.mode = CrowdMode::vdr;
-    else if (m == "vdr+oc") v.mode = CrowdMode::vdr_oc;
-    else bad("mode", "mode must be one of nolod, vdr, vdr+oc");
+  if (const auto* m = member(msg, "mode")) {
+    const auto name = json_choice(*m, "mode", {"nolod", "vdr", "vdr+oc"});
+    v.mode = name == "nolod" ? CrowdMode::no_lod : name == "vdr" ? CrowdMode::vdr : CrowdMode::vdr_oc;
   }
-  if (msg.contains("poe")) v.poe = static_cast<float>(number(msg, "poe", limits.min_poe, limits.max_poe));
-  if (msg.contains("width")) v.width = static_cast<int>(number(msg, "width", limits.min_width, limits.max_width));
-  if (msg.contains("height")) v.height = static_cast<int>(number(msg, "height", limits.min_height, limits.max_height));
-  if (msg.contains("quality"))
-    v.quality = static_cast<int>(number(msg, "quality", limits.min_quality, limits.max_quality));
-  if (msg.contains("heatmap")) v.heatmap = boolean(msg, "heatmap");
-  if (msg.contains("animate")) v.animate = boolean(msg, "animate");
-  if (msg.contains("count"))
-    v.count = static_cast<int>(number(msg, "count", spec->min_count, spec->max_count));
-  if (msg.contains("camera")) {
-    const auto& c = msg["camera"];
-    if (!c.is_object()) bad("camera", "camera must be an object {eye, target, fov}");
-    if (!c.contains("eye") || !c.contains("target")) bad("camera", "camera needs eye and target");
-    v.eye = point(c["eye"], "camera.eye", limits.max_coordinate);
-    v.target = point(c["target"], "camera.target", limits.max_coordinate);
+  if (const auto* x = member(msg, "poe")) v.poe = static_cast<float>(json_number(*x, "poe", limits.min_poe, limits.max_poe));
+  if (const auto* x = member(msg, "width"))
+    v.width = static_cast<int>(json_number(*x, "width", limits.min_width, limits.max_width));
+  if (const auto* x = member(msg, "height"))
+    v.height = static_cast<int>(json_number(*x, "height", limits.min_height, limits.max_height));
+  if (const auto* x = member(msg, "quality"))
+    v.quality = static_cast<int>(json_number(*x, "quality", limits.min_quality, limits.max_quality));
+  if (const auto* x = member(msg, "heatmap")) v.heatmap = json_bool(*x, "heatmap");
+  if (const auto* x = member(msg, "animate")) v.animate = json_bool(*x, "animate");
+  if (const auto* x = member(msg, "count"))
+    v.count = static_cast<int>(json_number(*x, "count", spec->min_count, spec->max_count));
+  if (const auto* c = member(msg, "camera")) {
+    if (!c->is_object()) throw bad("camera", "expected an object {eye, target, fov}");
+    if (!c->contains("eye") || !c->contains("target")) throw bad("camera", "needs eye and target");
+    v.eye = point((*c)["eye"], "camera.eye", limits.max_coordinate);
+    v.target = point((*c)["target"], "camera.target", limits.max_coordinate);
     const float dx = v.eye[0] - v.target[0], dy = v.eye[1] - v.target[1], dz = v.eye[2] - v.target[2];
-    if (dx * dx + dy * dy + dz * dz < 1e-6f) bad("camera.target", "camera.eye and camera.target must differ");
-    if (c.contains("fov")) {
-      if (!c["fov"].is_number() || !std::isfinite(c["fov"].get<double>()) || c["fov"].get<double>() < limits.min_fov ||
-          c["fov"].get<double>() > limits.max_fov)
-        bad("camera.fov", "camera.fov must be between " + std::to_string(static_cast<int>(limits.min_fov)) + " and " +
-                              std::to_string(static_cast<int>(limits.max_fov)) + " degrees");
-      v.fov = c["fov"].get<float>();
-    }
+    if (dx * dx + dy * dy + dz * dz < 1e-6f) throw bad("camera.target", "camera.eye and camera.target must differ");
+    if (const auto* fov = member(*c, "fov")) v.fov = static_cast<float>(json_number(*fov, "camera.fov", limits.min_fov, limits.max_fov));
     v.has_camera = true;
   }
   return v;

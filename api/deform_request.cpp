@@ -1,6 +1,7 @@
 #include "deform_request.hpp"
 
 #include "geojson_in.hpp"
+#include "params.hpp"
 
 #include "geo/polygon.hpp"
 
@@ -10,82 +11,25 @@
 namespace tourmap::api {
 namespace {
 
-ApiError bad(const std::string& field, const std::string& message) {
-  return ApiError(400, "invalid_parameter", field + ": " + message, field);
-}
-
-const nlohmann::json* member(const nlohmann::json& obj, const char* key) {
-  auto it = obj.find(key);
-  return it == obj.end() ? nullptr : &*it;
-}
-
-double number(const nlohmann::json& v, const std::string& field, double min, double max) {
-  if (!v.is_number()) throw bad(field, "expected a number");
-  double d = v.get<double>();
-  if (!std::isfinite(d) || d < min || d > max)
-    throw bad(field, "must be between " + nlohmann::json(min).dump() + " and " + nlohmann::json(max).dump());
-  return d;
-}
-
-int integer(const nlohmann::json& v, const std::string& field, int min, int max) {
-  if (!v.is_number_integer()) throw bad(field, "expected an integer");
-  auto i = v.get<long long>();
-  if (i < min || i > max) throw bad(field, "must be between " + std::to_string(min) + " and " + std::to_string(max));
-  return static_cast<int>(i);
-}
-
-bool boolean(const nlohmann::json& v, const std::string& field) {
-  if (!v.is_boolean()) throw bad(field, "expected true or false");
-  return v.get<bool>();
-}
-
-std::string text(const nlohmann::json& v, const std::string& field, std::initializer_list<const char*> allowed) {
-  std::string all;
-  for (auto a : allowed) all += (all.empty() ? "" : ", ") + std::string(a);
-  if (!v.is_string()) throw bad(field, "expected one of " + all);
-  auto s = v.get<std::string>();
-  for (auto a : allowed)
-    if (s == a) return s;
-  throw bad(field, "'" + s + "' is not one of " + all);
-}
-
 std::int64_t node_id(const nlohmann::json& v, const std::string& field) {
   if (!v.is_number_integer()) throw bad(field, "expected a road node id (integer)");
   return v.get<std::int64_t>();
 }
 
-void reject_unknown(const nlohmann::json& obj, const std::string& prefix, std::initializer_list<const char*> known) {
-  for (auto it = obj.begin(); it != obj.end(); ++it) {
-    bool ok = false;
-    for (auto k : known) ok = ok || it.key() == k;
-    if (!ok) {
-      auto field = prefix.empty() ? it.key() : prefix + "." + it.key();
-      throw bad(field, "unknown field");
-    }
-  }
-}
-
-const nlohmann::json& array_of(const nlohmann::json& v, const std::string& field, std::size_t min, std::size_t max) {
-  if (!v.is_array()) throw bad(field, "expected an array");
-  if (v.size() < min) throw bad(field, "needs at least " + std::to_string(min) + " item(s)");
-  if (v.size() > max) throw ApiError(413, "too_large", field + ": at most " + std::to_string(max) + " items", field);
-  return v;
-}
-
 GridChoice parse_grid(const nlohmann::json& g, const DeformLimits& limits) {
   if (!g.is_object()) throw bad("grid", "expected an object like {\"kind\": \"adaptive\", \"base\": 10, \"depth\": 3}");
   GridChoice c;
-  auto kind = member(g, "kind") ? text(g["kind"], "grid.kind", {"adaptive", "uniform", "edges"}) : "adaptive";
+  auto kind = member(g, "kind") ? json_choice(g["kind"], "grid.kind", {"adaptive", "uniform", "edges"}) : "adaptive";
   if (kind == "adaptive") {
     reject_unknown(g, "grid", {"kind", "base", "depth", "c"});
     c.kind = GridChoice::Kind::adaptive;
-    if (auto* v = member(g, "base")) c.base = integer(*v, "grid.base", 1, limits.max_base);
-    if (auto* v = member(g, "depth")) c.depth = integer(*v, "grid.depth", 0, limits.max_depth);
-    if (auto* v = member(g, "c")) c.c = integer(*v, "grid.c", 0, 1000000);
+    if (auto* v = member(g, "base")) c.base = json_integer(*v, "grid.base", 1, limits.max_base);
+    if (auto* v = member(g, "depth")) c.depth = json_integer(*v, "grid.depth", 0, limits.max_depth);
+    if (auto* v = member(g, "c")) c.c = json_integer(*v, "grid.c", 0, 1000000);
   } else if (kind == "uniform") {
     reject_unknown(g, "grid", {"kind", "n"});
     c.kind = GridChoice::Kind::uniform;
-    if (auto* v = member(g, "n")) c.n = integer(*v, "grid.n", 1, limits.max_uniform);
+    if (auto* v = member(g, "n")) c.n = json_integer(*v, "grid.n", 1, limits.max_uniform);
   } else {
     reject_unknown(g, "grid", {"kind"});
     c.kind = GridChoice::Kind::edges;
@@ -96,22 +40,22 @@ GridChoice parse_grid(const nlohmann::json& g, const DeformLimits& limits) {
 void parse_weights(const nlohmann::json& w, deform::Weights& out) {
   if (!w.is_object()) throw bad("weights", "expected an object");
   reject_unknown(w, "weights", {"road", "quad", "smooth", "guide"});
-  if (auto* v = member(w, "road")) out.road = number(*v, "weights.road", 1e-6, 1e6);
-  if (auto* v = member(w, "quad")) out.quad = number(*v, "weights.quad", 0, 1e6);
-  if (auto* v = member(w, "smooth")) out.smooth = number(*v, "weights.smooth", 0, 1e6);
-  if (auto* v = member(w, "guide")) out.guide = number(*v, "weights.guide", 1e-6, 1e9);
+  if (auto* v = member(w, "road")) out.road = json_number(*v, "weights.road", 1e-6, 1e6);
+  if (auto* v = member(w, "quad")) out.quad = json_number(*v, "weights.quad", 0, 1e6);
+  if (auto* v = member(w, "smooth")) out.smooth = json_number(*v, "weights.smooth", 0, 1e6);
+  if (auto* v = member(w, "guide")) out.guide = json_number(*v, "weights.guide", 1e-6, 1e9);
 }
 
 void parse_output(const nlohmann::json& o, DeformRequest& r) {
   if (!o.is_object()) throw bad("output", "expected an object");
   reject_unknown(o, "output", {"roads", "grid"});
   if (auto* v = member(o, "roads")) {
-    auto s = text(*v, "output.roads", {"geojson", "positions", "none"});
+    auto s = json_choice(*v, "output.roads", {"geojson", "positions", "none"});
     r.roads_output = s == "geojson"     ? DeformRequest::RoadsOutput::geojson
                      : s == "positions" ? DeformRequest::RoadsOutput::positions
                                         : DeformRequest::RoadsOutput::none;
   }
-  if (auto* v = member(o, "grid")) r.grid_output = boolean(*v, "output.grid");
+  if (auto* v = member(o, "grid")) r.grid_output = json_bool(*v, "output.grid");
 }
 
 FocusRegionInput parse_region(const nlohmann::json& v, const std::string& field, const DeformLimits& limits) {
@@ -130,7 +74,7 @@ FocusRegionInput parse_region(const nlohmann::json& v, const std::string& field,
   bool has_polygon = member(v, "polygon") != nullptr;
   if (has_circle == has_polygon) throw bad(field, "give either center and radius_m, or polygon");
   if (has_polygon) {
-    const auto& ring = array_of(v["polygon"], field + ".polygon", 3, limits.max_polygon_vertices);
+    const auto& ring = json_array(v["polygon"], field + ".polygon", 3, limits.max_polygon_vertices);
     for (std::size_t i = 0; i < ring.size(); ++i)
       r.polygon.push_back(parse_position(ring[i], field + ".polygon[" + std::to_string(i) + "]"));
     // A closed ring may repeat its first position; an open one is closed implicitly.
@@ -142,7 +86,7 @@ FocusRegionInput parse_region(const nlohmann::json& v, const std::string& field,
     if (!member(v, "center")) throw bad(field + ".center", "missing");
     if (!member(v, "radius_m")) throw bad(field + ".radius_m", "missing");
     r.center = parse_position(v["center"], field + ".center");
-    r.radius_m = number(v["radius_m"], field + ".radius_m", 1e-3, 1e7);
+    r.radius_m = json_number(v["radius_m"], field + ".radius_m", 1e-3, 1e7);
   }
   return r;
 }
@@ -183,7 +127,7 @@ DeformRequest parse_deform_request(DeformApp app, const nlohmann::json& body, co
     bool ok = false;
     for (auto k : common) ok = ok || it.key() == k;
     for (auto k : specific) ok = ok || it.key() == k;
-    if (!ok) throw bad(it.key(), std::string("unknown field for /deform/") + app_name(app));
+    if (!ok) throw bad(shown(it.key()), std::string("unknown field for /deform/") + app_name(app));
   }
 
   const auto* roads = member(body, "roads");
@@ -198,24 +142,24 @@ DeformRequest parse_deform_request(DeformApp app, const nlohmann::json& body, co
 
   if (auto* v = member(body, "grid")) r.grid = parse_grid(*v, limits);
   if (auto* v = member(body, "solver")) {
-    r.solver = text(*v, "solver", {"cholesky", "cg"}) == "cg" ? deform::SolverKind::cg : deform::SolverKind::cholesky;
+    r.solver = json_choice(*v, "solver", {"cholesky", "cg"}) == "cg" ? deform::SolverKind::cg : deform::SolverKind::cholesky;
   }
   if (auto* v = member(body, "weights")) parse_weights(*v, r.weights);
   if (auto* v = member(body, "boundary"))
-    r.boundary = text(*v, "boundary", {"fixed", "sliding"}) == "sliding" ? deform::Boundary::sliding
+    r.boundary = json_choice(*v, "boundary", {"fixed", "sliding"}) == "sliding" ? deform::Boundary::sliding
                                                                           : deform::Boundary::fixed;
   if (auto* v = member(body, "cg")) {
     if (!v->is_object()) throw bad("cg", "expected an object");
     reject_unknown(*v, "cg", {"max_iterations", "tolerance"});
-    if (auto* m = member(*v, "max_iterations")) r.max_iterations = integer(*m, "cg.max_iterations", 1, 1000000);
-    if (auto* t = member(*v, "tolerance")) r.tolerance = number(*t, "cg.tolerance", 1e-14, 1e-1);
+    if (auto* m = member(*v, "max_iterations")) r.max_iterations = json_integer(*m, "cg.max_iterations", 1, 1000000);
+    if (auto* t = member(*v, "tolerance")) r.tolerance = json_number(*t, "cg.tolerance", 1e-14, 1e-1);
   }
-  if (auto* v = member(body, "time_limit_ms")) r.time_limit_ms = number(*v, "time_limit_ms", 1, limits.max_time_limit_ms);
-  if (auto* v = member(body, "relax")) r.relax = boolean(*v, "relax");
-  if (auto* v = member(body, "check_crossings")) r.check_crossings = boolean(*v, "check_crossings");
+  if (auto* v = member(body, "time_limit_ms")) r.time_limit_ms = json_number(*v, "time_limit_ms", 1, limits.max_time_limit_ms);
+  if (auto* v = member(body, "relax")) r.relax = json_bool(*v, "relax");
+  if (auto* v = member(body, "check_crossings")) r.check_crossings = json_bool(*v, "check_crossings");
   if (auto* v = member(body, "output")) parse_output(*v, r);
   if (auto* v = member(body, "map_points")) {
-    const auto& pts = array_of(*v, "map_points", 0, limits.max_map_points);
+    const auto& pts = json_array(*v, "map_points", 0, limits.max_map_points);
     for (std::size_t i = 0; i < pts.size(); ++i)
       r.map_points.push_back(parse_position(pts[i], "map_points[" + std::to_string(i) + "]"));
   }
@@ -223,14 +167,21 @@ DeformRequest parse_deform_request(DeformApp app, const nlohmann::json& body, co
   if (app == DeformApp::focus) {
     const auto* regions = member(body, "regions");
     if (!regions) throw bad("regions", "missing (at least one focus region)");
-    const auto& list = array_of(*regions, "regions", 1, limits.max_regions);
-    for (std::size_t i = 0; i < list.size(); ++i)
+    const auto& list = json_array(*regions, "regions", 1, limits.max_regions);
+    // One vertex budget for all polygons: each road edge is tested against every region.
+    std::size_t vertices = 0;
+    for (std::size_t i = 0; i < list.size(); ++i) {
       r.regions.push_back(parse_region(list[i], "regions[" + std::to_string(i) + "]", limits));
+      vertices += r.regions.back().polygon.size();
+      if (vertices > limits.max_polygon_vertices)
+        throw too_large("regions",
+                        "at most " + std::to_string(limits.max_polygon_vertices) + " polygon vertices in all regions together");
+    }
   }
   if (app == DeformApp::mental) {
     const auto* guides = member(body, "guides");
     if (!guides) throw bad("guides", "missing (road vertices and their target points)");
-    const auto& list = array_of(*guides, "guides", 1, limits.max_guides);
+    const auto& list = json_array(*guides, "guides", 1, limits.max_guides);
     for (std::size_t i = 0; i < list.size(); ++i) {
       auto field = "guides[" + std::to_string(i) + "]";
       const auto& g = list[i];
@@ -249,14 +200,14 @@ DeformRequest parse_deform_request(DeformApp app, const nlohmann::json& body, co
   if (app == DeformApp::destination) {
     const auto* route = member(body, "route");
     if (!route) throw bad("route", "missing (road node ids along the route)");
-    const auto& ids = array_of(*route, "route", 2, limits.max_route);
+    const auto& ids = json_array(*route, "route", 2, limits.max_route);
     for (std::size_t i = 0; i < ids.size(); ++i) r.route.push_back(node_id(ids[i], "route[" + std::to_string(i) + "]"));
     const auto* sketch = member(body, "sketch");
     if (!sketch) throw bad("sketch", "missing (the sketch polyline, at least 2 points)");
-    const auto& pts = array_of(*sketch, "sketch", 2, limits.max_polygon_vertices);
+    const auto& pts = json_array(*sketch, "sketch", 2, limits.max_polygon_vertices);
     for (std::size_t i = 0; i < pts.size(); ++i)
       r.sketch.push_back(parse_position(pts[i], "sketch[" + std::to_string(i) + "]"));
-    if (auto* v = member(body, "simplify_m")) r.simplify_m = number(*v, "simplify_m", 0, 1e6);
+    if (auto* v = member(body, "simplify_m")) r.simplify_m = json_number(*v, "simplify_m", 0, 1e6);
   }
   return r;
 }

@@ -37,6 +37,10 @@ struct DeformLimits {
   std::size_t max_inline_vertices = 50000;
   double max_scale = 50.0;
   double max_time_limit_ms = 30000.0;
+  // Memory the service's caches may hold (least recently used entries go first).
+  std::size_t network_cache_bytes = 256u << 20;   // road networks prepared for deformation
+  std::size_t prepared_cache_bytes = 512u << 20;  // grids, systems and factorizations
+  std::size_t result_cache_bytes = 64u << 20;     // whole response bodies
 };
 
 struct GridChoice {

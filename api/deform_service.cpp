@@ -24,10 +24,6 @@ std::uint64_t edge_key(std::uint32_t a, std::uint32_t b) {
 }
 
 
-ApiError bad(const std::string& field, const std::string& message) {
-  return ApiError(400, "invalid_parameter", field + ": " + message, field);
-}
-
 std::shared_ptr<DeformNetwork> make_network(std::string key, std::shared_ptr<const RoadNetworkEntry> entry) {
   auto n = std::make_shared<DeformNetwork>();
   n->key = std::move(key);
@@ -63,7 +59,21 @@ std::size_t DeformNetwork::rest_crossings() const {
   return crossings_;
 }
 
-DeformService::DeformService(Catalog& catalog, DeformLimits limits) : catalog_(catalog), limits_(limits) {}
+std::size_t DeformNetwork::memory_bytes() const {
+  // Vectors by capacity; hash tables at ~48 bytes a node (key, value, next pointer, bucket);
+  // the R-tree index at ~48 bytes a point.
+  const std::size_t nodes = planar.nodes.size();
+  return sizeof(DeformNetwork) + planar.nodes.capacity() * sizeof(geo::XY) +
+         planar.edges.capacity() * sizeof(planar.edges[0]) + rest_lonlat.capacity() * sizeof(geo::LonLat) +
+         node_by_id.size() * 48 + edge_keys.size() * 40 + nodes * 48;
+}
+
+DeformService::DeformService(Catalog& catalog, DeformLimits limits)
+    : catalog_(catalog),
+      limits_(limits),
+      networks_(limits.network_cache_bytes),
+      prepared_(limits.prepared_cache_bytes),
+      results_(limits.result_cache_bytes) {}
 
 DeformService::CacheStats DeformService::cache_stats() const {
   return {networks_.size(), prepared_.size(), results_.size(), results_.used()};
@@ -81,32 +91,33 @@ std::shared_ptr<const DeformNetwork> DeformService::network_for(const DeformRequ
     entry->info.edge_count = entry->net.edges.size();
     entry->info.way_count = entry->net.ways.size();
     auto net = make_network(key, entry);
-    networks_.put(key, net);
+    networks_.put(key, net, net->memory_bytes());
     return net;
   }
   require_slug(r.roads_id, "road network", "roads");
   auto entry = catalog_.road_network(r.roads_id);
-  if (!entry) throw ApiError(404, "not_found", "no road network '" + r.roads_id + "'", "roads");
+  if (!entry) throw ApiError(404, "not_found", "roads: no road network '" + r.roads_id + "'", "roads");
   auto key = entry->info.id + "@" + std::to_string(entry->info.version);
   if (auto hit = networks_.get(key)) return *hit;
   auto net = make_network(key, entry);
-  networks_.put(key, net);
+  networks_.put(key, net, net->memory_bytes());
   return net;
 }
 
 std::shared_ptr<deform::Prepared> DeformService::prepared_for(const DeformRequest& r, const DeformNetwork& net,
                                                               const std::vector<std::uint32_t>& guide_nodes,
-                                                              bool* cache_hit) {
+                                                              bool* cache_hit, std::string* key_out) {
   std::string key = net.key + "|" + r.grid.describe() + "|" + weights_key(r.weights) + "|" +
                     (r.boundary == deform::Boundary::fixed ? "fixed" : "sliding") + "|g=";
   for (auto g : guide_nodes) key += std::to_string(g) + ",";
+  *key_out = key;
   *cache_hit = true;
   if (auto hit = prepared_.get(key)) return *hit;
 
   // One build per key at a time: concurrent identical requests wait for it.
   bool built = false;
   auto p = building_.run(key, [&] { return build_prepared(r, net, guide_nodes); }, &built);
-  if (built) prepared_.put(key, p);
+  if (built) prepared_.put(key, p, p->memory_bytes());
   *cache_hit = !built;
   return p;
 }
@@ -134,11 +145,14 @@ std::shared_ptr<deform::Prepared> DeformService::build_prepared(const DeformRequ
                      "grid");
     g = grid::build_adaptive(frame, planar.nodes, special, {r.grid.base, r.grid.depth, r.grid.c});
   }
+  // Limits are in unknowns (2 per grid vertex: x and y), as documented; the fixed boundary's
+  // vertices count too, so this is an upper bound known before any assembly.
   std::size_t limit = r.solver == deform::SolverKind::cholesky ? limits_.max_direct_grid_unknowns : limits_.max_unknowns;
   if (2 * g.vertices.size() > limit)
     throw ApiError(413, "too_large",
-                   "grid: " + std::to_string(g.vertices.size()) + " grid vertices exceed the limit of " +
-                       std::to_string(limit / 2) + " for the " +
+                   "grid: " + std::to_string(g.vertices.size()) + " grid vertices (" +
+                       std::to_string(2 * g.vertices.size()) + " unknowns) exceed the limit of " +
+                       std::to_string(limit) + " unknowns for the " +
                        (r.solver == deform::SolverKind::cholesky ? "Cholesky solver; use \"solver\": \"cg\" or" : "solvers; use") +
                        " a coarser grid",
                    "grid");
@@ -263,7 +277,8 @@ Response DeformService::handle(DeformApp app, const Request& req) {
   }
 
   bool prepared_hit = false;
-  auto prepared = prepared_for(r, *net, deform::guide_nodes(targets.guides), &prepared_hit);
+  std::string prepared_key;
+  auto prepared = prepared_for(r, *net, deform::guide_nodes(targets.guides), &prepared_hit, &prepared_key);
   if (r.solver == deform::SolverKind::cholesky && prepared->grid &&
       static_cast<std::size_t>(prepared->rest_unknowns.size()) > limits_.max_direct_grid_unknowns)
     throw ApiError(413, "too_large",
@@ -281,6 +296,9 @@ Response DeformService::handle(DeformApp app, const Request& req) {
   std::optional<std::size_t> rest_crossings;
   if (r.check_crossings) rest_crossings = net->rest_crossings();
   auto result = deform::run(*prepared, net->planar, targets, options, rest_crossings);
+  // The first Cholesky solve factorized: the cache charges the factor's bytes from now on.
+  if (result.solve.kind == deform::SolverKind::cholesky && !result.solve.factor_cached)
+    prepared_.put(prepared_key, prepared, prepared->memory_bytes());
 
   auto out_start = Clock::now();
   std::vector<geo::LonLat> deformed;

@@ -37,6 +37,7 @@ struct DeformNetwork {
 
   bool has_edge(std::uint32_t a, std::uint32_t b) const;
   std::size_t rest_crossings() const;  // computed once
+  std::size_t memory_bytes() const;    // approximate, for the cache budget (the shared entry excluded)
 
  private:
   mutable std::once_flag crossings_once_;
@@ -56,15 +57,17 @@ class DeformService {
  private:
   std::shared_ptr<const DeformNetwork> network_for(const DeformRequest& r);
   std::shared_ptr<deform::Prepared> prepared_for(const DeformRequest& r, const DeformNetwork& net,
-                                                 const std::vector<std::uint32_t>& guide_nodes, bool* cache_hit);
+                                                 const std::vector<std::uint32_t>& guide_nodes, bool* cache_hit,
+                                                 std::string* key_out);
   std::shared_ptr<deform::Prepared> build_prepared(const DeformRequest& r, const DeformNetwork& net,
                                                    const std::vector<std::uint32_t>& guide_nodes) const;
 
   Catalog& catalog_;
   DeformLimits limits_;
-  LruCache<std::shared_ptr<const DeformNetwork>> networks_{8};
-  LruCache<std::shared_ptr<deform::Prepared>> prepared_{16};
-  LruCache<std::shared_ptr<const std::string>> results_{64u << 20};
+  // Each bounded in bytes (DeformLimits): a prepared system of a fine grid holds hundreds of MB.
+  LruCache<std::shared_ptr<const DeformNetwork>> networks_;
+  LruCache<std::shared_ptr<deform::Prepared>> prepared_;
+  LruCache<std::shared_ptr<const std::string>> results_;
   SingleFlight<std::shared_ptr<deform::Prepared>> building_;
 };
 

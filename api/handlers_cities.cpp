@@ -17,7 +17,7 @@ std::shared_ptr<const model::City> require_city(AppContext& ctx, const Request& 
   const auto& id = req.param("id");
   require_slug(id, "city");
   auto city = ctx.catalog.city(id);
-  if (!city) throw ApiError(404, "not_found", "no city '" + id + "'", "id");
+  if (!city) throw not_found("id", "city", id);
   return city;
 }
 
@@ -35,14 +35,14 @@ std::vector<std::uint32_t> all_pois(const model::City& city) {
 }  // namespace
 
 void add_city_routes(Router& router, AppContext& ctx) {
-  router.add("GET", "/api/v1/cities", Exec::compute, [&ctx](Request&) {
+  router.add("GET", "/api/v1/cities", Exec::light, [&ctx](Request&) {
     auto db = ctx.db.acquire();
     nlohmann::json cities = nlohmann::json::array();
     for (const auto& info : store::list_cities(*db)) cities.push_back(city_summary(info));
     return cacheable(json_response({{"cities", std::move(cities)}}));
   });
 
-  router.add("GET", "/api/v1/cities/{id}", Exec::compute, [&ctx](Request& req) {
+  router.add("GET", "/api/v1/cities/{id}", Exec::light, [&ctx](Request& req) {
     auto city = require_city(ctx, req);
     auto body = city_summary(city->info);
     nlohmann::json lines = nlohmann::json::array();
@@ -55,13 +55,13 @@ void add_city_routes(Router& router, AppContext& ctx) {
     return cacheable(json_response(body));
   });
 
-  router.add("GET", "/api/v1/cities/{id}/metro", Exec::compute, [&ctx](Request& req) {
+  router.add("GET", "/api/v1/cities/{id}/metro", Exec::light, [&ctx](Request& req) {
     auto bbox = query_bbox(req);
     auto city = require_city(ctx, req);
     return cacheable(geojson_response(metro_geojson(*city, bbox)));
   });
 
-  router.add("GET", "/api/v1/cities/{id}/pois", Exec::compute, [&ctx](Request& req) {
+  router.add("GET", "/api/v1/cities/{id}/pois", Exec::light, [&ctx](Request& req) {
     auto bbox = query_bbox(req);
     PoiPage page;
     page.limit = static_cast<std::size_t>(query_int(req, "limit", 1, kMaxPoiLimit, kDefaultPoiLimit));
@@ -71,40 +71,25 @@ void add_city_routes(Router& router, AppContext& ctx) {
   });
 
   // POIs inside a drawn area, optionally filtered by category: for mobile apps and the client.
-  router.add("POST", "/api/v1/cities/{id}/pois/query", Exec::compute, [&ctx](Request& req) {
+  router.add("POST", "/api/v1/cities/{id}/pois/query", Exec::light, [&ctx](Request& req) {
     auto body = parse_json_body(req);
-    if (!body.is_object()) throw ApiError(400, "invalid_parameter", "body must be a JSON object", "body");
+    if (!body.is_object()) throw bad("body", "expected a JSON object");
+    reject_unknown(body, "", {"bbox", "within", "categories", "limit", "offset"});
     std::optional<geo::BBox> bbox;
-    if (body.contains("bbox")) bbox = parse_bbox_json(body["bbox"], "bbox");
+    if (const auto* v = member(body, "bbox")) bbox = parse_bbox_json(*v, "bbox");
     std::optional<geo::PolygonSet> within;
-    if (body.contains("within")) within.emplace(parse_polygons(body["within"], "within"));
+    if (const auto* v = member(body, "within")) within.emplace(parse_polygons(*v, "within"));
     std::set<std::string> categories;
-    if (body.contains("categories")) {
-      const auto& c = body["categories"];
-      if (!c.is_array()) throw ApiError(400, "invalid_parameter", "categories: expected an array of strings", "categories");
-      for (const auto& v : c) {
-        if (!v.is_string())
-          throw ApiError(400, "invalid_parameter", "categories: expected an array of strings", "categories");
-        categories.insert(v.get<std::string>());
-      }
+    if (const auto* v = member(body, "categories")) {
+      const auto& list = json_array(*v, "categories", 0, kMaxQueryCategories);
+      for (std::size_t i = 0; i < list.size(); ++i)
+        categories.insert(json_string(list[i], "categories[" + std::to_string(i) + "]", kMaxCategoryBytes));
     }
     PoiPage page;
-    for (auto [name, target, min, max] : {std::tuple{"limit", &page.limit, std::size_t{1}, kMaxPoiLimit},
-                                          std::tuple{"offset", &page.offset, std::size_t{0}, std::size_t{1'000'000'000}}}) {
-      if (!body.contains(name)) continue;
-      const auto& v = body[name];
-      if (!v.is_number_integer() || v.get<long long>() < static_cast<long long>(min) ||
-          v.get<long long>() > static_cast<long long>(max))
-        throw ApiError(400, "invalid_parameter",
-                       std::string(name) + ": expected an integer between " + std::to_string(min) + " and " +
-                           std::to_string(max),
-                       name);
-      *target = v.get<std::size_t>();
-    }
-    for (auto it = body.begin(); it != body.end(); ++it)
-      if (it.key() != "bbox" && it.key() != "within" && it.key() != "categories" && it.key() != "limit" &&
-          it.key() != "offset")
-        throw ApiError(400, "invalid_parameter", "unknown field '" + it.key() + "'", it.key());
+    if (const auto* v = member(body, "limit"))
+      page.limit = static_cast<std::size_t>(json_integer(*v, "limit", 1, static_cast<long long>(kMaxPoiLimit)));
+    if (const auto* v = member(body, "offset"))
+      page.offset = static_cast<std::size_t>(json_integer(*v, "offset", 0, 1'000'000'000));
 
     auto city = require_city(ctx, req);
     std::vector<std::uint32_t> selected;

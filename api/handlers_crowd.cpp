@@ -6,7 +6,7 @@
 namespace tourmap::api {
 
 void add_crowd_routes(Router& router, AppContext& ctx) {
-  router.add("GET", "/api/v1/crowd/scenes", Exec::compute, [&ctx](Request&) {
+  router.add("GET", "/api/v1/crowd/scenes", Exec::light, [&ctx](Request&) {
     auto triangles = [&ctx](const std::string& id, int count) -> long long {
       const auto* spec = crowd::find_scene_spec(id);
       return ctx.crowd && spec ? ctx.crowd->full_triangles(*spec, count) : -1;

@@ -6,7 +6,7 @@ namespace tourmap::api {
 
 void add_deform_routes(Router& router, AppContext& ctx) {
   for (auto app : {DeformApp::focus, DeformApp::mental, DeformApp::destination})
-    router.add("POST", std::string("/api/v1/deform/") + app_name(app), Exec::compute,
+    router.add("POST", std::string("/api/v1/deform/") + app_name(app), Exec::heavy,
                [&ctx, app](Request& req) { return ctx.deform.handle(app, req); });
 }
 

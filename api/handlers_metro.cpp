@@ -5,13 +5,13 @@
 namespace tourmap::api {
 
 void add_metro_routes(Router& router, AppContext& ctx) {
-  router.add("GET", "/api/v1/cities/{id}/layout", Exec::compute,
+  router.add("GET", "/api/v1/cities/{id}/layout", Exec::heavy,
              [&ctx](Request& req) { return ctx.metro.layout(req, false); });
-  router.add("POST", "/api/v1/cities/{id}/layout", Exec::compute,
+  router.add("POST", "/api/v1/cities/{id}/layout", Exec::heavy,
              [&ctx](Request& req) { return ctx.metro.layout(req, true); });
-  router.add("GET", "/api/v1/cities/{id}/visual-worth", Exec::compute,
+  router.add("GET", "/api/v1/cities/{id}/visual-worth", Exec::heavy,
              [&ctx](Request& req) { return ctx.metro.visual_worth(req); });
-  router.add("GET", "/api/v1/cities/{id}/clusters", Exec::compute,
+  router.add("GET", "/api/v1/cities/{id}/clusters", Exec::heavy,
              [&ctx](Request& req) { return ctx.metro.clusters(req); });
 }
 

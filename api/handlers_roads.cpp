@@ -9,7 +9,7 @@
 namespace tourmap::api {
 
 void add_road_routes(Router& router, AppContext& ctx) {
-  router.add("GET", "/api/v1/roads", Exec::compute, [&ctx](Request&) {
+  router.add("GET", "/api/v1/roads", Exec::light, [&ctx](Request&) {
     auto db = ctx.db.acquire();
     nlohmann::json roads = nlohmann::json::array();
     for (const auto& info : store::list_road_networks(*db)) roads.push_back(road_network_summary(info));
@@ -18,18 +18,15 @@ void add_road_routes(Router& router, AppContext& ctx) {
     return r;
   });
 
-  router.add("GET", "/api/v1/roads/{id}", Exec::compute, [&ctx](Request& req) {
+  router.add("GET", "/api/v1/roads/{id}", Exec::light, [&ctx](Request& req) {
     auto bbox = query_bbox(req);
     bool with_nodes = query_bool(req, "nodes", false);
-    std::string format = req.query_param("format") ? *req.query_param("format") : "geojson";
-    if (format != "geojson" && format != "topology")
-      throw ApiError(400, "invalid_parameter", "format: expected geojson or topology", "format");
-    if (format == "topology" && bbox)
-      throw ApiError(400, "invalid_parameter", "bbox: not available with format=topology (whole networks only)", "bbox");
+    const std::string format = query_choice(req, "format", {"geojson", "topology"}, "geojson");
+    if (format == "topology" && bbox) throw bad("bbox", "not available with format=topology (whole networks only)");
     const auto& id = req.param("id");
     require_slug(id, "road network");
     auto entry = ctx.catalog.road_network(id);
-    if (!entry) throw ApiError(404, "not_found", "no road network '" + id + "'", "id");
+    if (!entry) throw not_found("id", "road network", id);
     Response r;
     if (format == "topology") {
       r = json_response(roads_topology(*entry));

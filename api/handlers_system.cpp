@@ -16,7 +16,10 @@ void add_system_routes(Router& router, AppContext& ctx) {
       return json_response({{"status", "ok"}, {"version", ctx.version}, {"schema_version", schema},
                             {"uptime_s", uptime}});
     } catch (const std::exception& e) {
-      return json_response({{"status", "unavailable"}, {"version", ctx.version}, {"error", e.what()}}, 503);
+      return json_response({{"status", "unavailable"},
+                            {"version", ctx.version},
+                            {"error", error_object("store_unavailable", std::string("the store: ") + e.what())}},
+                           503);
     }
   });
 

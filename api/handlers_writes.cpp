@@ -22,7 +22,7 @@ std::string text_param(const Request& req, const std::string& name, const std::s
   const auto* v = req.query_param(name);
   if (!v) return fallback;
   if (v->size() > kMaxTextParam)
-    throw ApiError(400, "invalid_parameter", name + ": at most " + std::to_string(kMaxTextParam) + " bytes", name);
+    throw bad(name, "at most " + std::to_string(kMaxTextParam) + " bytes");
   return *v;
 }
 
@@ -35,7 +35,7 @@ void require_new_id(const std::string& id, const std::string& what) {
 }
 
 void require_body(const Request& req) {
-  if (req.body.empty()) throw ApiError(400, "invalid_body", "the request body is empty: send the source file", "body");
+  if (req.body.empty()) throw bad("body", "empty: send the source file", "invalid_body");
 }
 
 nlohmann::json import_json(const store::ImportResult& r) {
@@ -43,15 +43,19 @@ nlohmann::json import_json(const store::ImportResult& r) {
           {"rows", r.rows},       {"seconds", r.seconds}, {"summary", r.summary}};
 }
 
-// Runs an import, mapping the loaders' and importer's errors to 4xx answers about the body.
+// Runs an import, mapping the loaders' and importer's errors to 4xx answers about the body:
+// beyond an import limit (load/import_limits.hpp) 413 `import_limit` whose message names the
+// limit and its value, other faults of the source 422.
 template <class F>
 Response run_import(F&& import) {
   try {
     return json_response(import_json(import()));
+  } catch (const load::LimitExceeded& e) {
+    throw ApiError(413, "import_limit", std::string("body: nothing was imported: ") + e.what(), "body");
   } catch (const load::LoadError& e) {
-    throw ApiError(422, "invalid_source", std::string("nothing was imported: ") + e.what(), "body");
+    throw ApiError(422, "invalid_source", std::string("body: nothing was imported: ") + e.what(), "body");
   } catch (const std::invalid_argument& e) {
-    throw ApiError(400, "invalid_import", std::string("nothing was imported: ") + e.what(), "body");
+    throw ApiError(400, "invalid_import", std::string("body: nothing was imported: ") + e.what(), "body");
   }
 }
 
@@ -61,10 +65,10 @@ std::vector<std::string> station_csv_files(const Request& req, const UploadDir& 
   std::vector<std::string> files;
   for (const char* part : {"stations", "lines", "connections"}) {
     if (!body.is_object() || !body.contains(part) || !body[part].is_string())
-      throw ApiError(400, "invalid_body",
-                     std::string("format=station-csvs needs a JSON body with string fields stations, lines and "
-                                 "connections (the three CSV files); ") + part + " is missing",
-                     part);
+      throw bad(part,
+                "missing: format=station-csvs needs a JSON body with string fields stations, lines and connections "
+                "(the three CSV files)",
+                "invalid_body");
     files.push_back(dir.write(id + "." + part + ".csv", body[part].get_ref<const std::string&>()));
   }
   return files;
@@ -83,7 +87,7 @@ Response put_metro(AppContext& ctx, Request& req) {
   try {
     import.format = store::parse_metro_format(format);
   } catch (const std::invalid_argument& e) {
-    throw ApiError(400, "invalid_parameter", std::string("format: ") + e.what(), "format");
+    throw bad("format", e.what());
   }
   std::string fallback_name;
   {
@@ -92,7 +96,7 @@ Response put_metro(AppContext& ctx, Request& req) {
   }
   import.city = {id, text_param(req, "name", fallback_name), text_param(req, "attribution")};
   if (import.city.name.empty())
-    throw ApiError(400, "invalid_parameter", "name: a new city needs a name (?name=...)", "name");
+    throw bad("name", "a new city needs a name (?name=...)");
   import.force = query_bool(req, "force", false);
   UploadDir dir;
   if (import.format == store::MetroFormat::station_csvs)
@@ -112,7 +116,7 @@ Response put_pois(AppContext& ctx, Request& req) {
   {
     auto db = ctx.db.acquire();
     if (!store::city_version(*db, id))
-      throw ApiError(404, "not_found", "no city '" + id + "': import its metro network first", "id");
+      throw ApiError(404, "not_found", "id: no city '" + id + "': import its metro network first", "id");
   }
   UploadDir dir;
   store::PoiImport import{id, dir.write(id + ".pois." + sniff_poi_extension(req.body), req.body),
@@ -131,7 +135,7 @@ Response put_roads(AppContext& ctx, Request& req) {
   auto extension = sniff_osm_extension(req.body);
   if (extension.empty())
     throw ApiError(415, "unsupported_format",
-                   "the body is not an OSM extract (expected OSM XML, .osm.gz, .osm.bz2 or .osm.pbf bytes)", "body");
+                   "body: not an OSM extract (expected OSM XML, .osm.gz, .osm.bz2 or .osm.pbf bytes)", "body");
   std::string fallback_name;
   {
     auto db = ctx.db.acquire();
@@ -141,7 +145,7 @@ Response put_roads(AppContext& ctx, Request& req) {
   import.network = {id, text_param(req, "name", fallback_name),
                     text_param(req, "attribution", "© OpenStreetMap contributors (ODbL 1.0)")};
   if (import.network.name.empty())
-    throw ApiError(400, "invalid_parameter", "name: a new road network needs a name (?name=...)", "name");
+    throw bad("name", "a new road network needs a name (?name=...)");
   import.force = query_bool(req, "force", false);
   UploadDir dir;
   import.file = dir.write(id + "." + extension, req.body);
@@ -154,33 +158,33 @@ Response put_roads(AppContext& ctx, Request& req) {
 }  // namespace
 
 void add_write_routes(Router& router, AppContext& ctx) {
-  router.add_write("PUT", "/api/v1/cities/{id}/metro", Exec::compute,
+  router.add_write("PUT", "/api/v1/cities/{id}/metro", Exec::heavy,
                    [&ctx](Request& req) { return put_metro(ctx, req); });
-  router.add_write("PUT", "/api/v1/cities/{id}/pois", Exec::compute,
+  router.add_write("PUT", "/api/v1/cities/{id}/pois", Exec::heavy,
                    [&ctx](Request& req) { return put_pois(ctx, req); });
-  router.add_write("PUT", "/api/v1/roads/{id}", Exec::compute, [&ctx](Request& req) { return put_roads(ctx, req); });
+  router.add_write("PUT", "/api/v1/roads/{id}", Exec::heavy, [&ctx](Request& req) { return put_roads(ctx, req); });
 
-  router.add_write("DELETE", "/api/v1/cities/{id}", Exec::compute, [&ctx](Request& req) {
+  router.add_write("DELETE", "/api/v1/cities/{id}", Exec::heavy, [&ctx](Request& req) {
     const auto& id = req.param("id");
     require_slug(id, "city");
     auto db = ctx.db.acquire();
-    if (!store::delete_city(*db, id)) throw ApiError(404, "not_found", "no city '" + id + "'", "id");
+    if (!store::delete_city(*db, id)) throw not_found("id", "city", id);
     return json_response({{"deleted", {{"kind", "city"}, {"id", id}}}});
   });
-  router.add_write("DELETE", "/api/v1/roads/{id}", Exec::compute, [&ctx](Request& req) {
+  router.add_write("DELETE", "/api/v1/roads/{id}", Exec::heavy, [&ctx](Request& req) {
     const auto& id = req.param("id");
     require_slug(id, "road network");
     auto db = ctx.db.acquire();
-    if (!store::delete_road_network(*db, id)) throw ApiError(404, "not_found", "no road network '" + id + "'", "id");
+    if (!store::delete_road_network(*db, id)) throw not_found("id", "road network", id);
     return json_response({{"deleted", {{"kind", "roads"}, {"id", id}}}});
   });
 
   // Persisted results only (layouts, cluster trees, crowd hierarchies): in-memory copies are
   // keyed by data version and age out; a restart drops them.
-  router.add_write("DELETE", "/api/v1/cache", Exec::compute, [&ctx](Request& req) {
+  router.add_write("DELETE", "/api/v1/cache", Exec::heavy, [&ctx](Request& req) {
     std::string kind = text_param(req, "kind");
     if (!kind.empty() && kind != "layout" && kind != "clusters" && kind != "crowd-hierarchy")
-      throw ApiError(400, "invalid_parameter", "kind: expected layout, clusters or crowd-hierarchy", "kind");
+      throw bad("kind", "expected layout, clusters or crowd-hierarchy");
     auto db = ctx.db.acquire();
     auto purged = store::cache_purge(*db, kind);
     return json_response({{"purged", purged}, {"kind", kind.empty() ? nlohmann::json(nullptr) : nlohmann::json(kind)}});

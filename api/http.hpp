@@ -38,19 +38,31 @@ struct Response {
 };
 
 // A client error (4xx) or a refusal (503) with the field it is about. Handlers throw it;
-// the server turns it into {"error": {"code", "message", "field"}}.
+// the server turns it into {"error": {"code", "message", "field"}}. `message` is the whole
+// text (what() stops at a NUL byte a client may have sent).
 class ApiError : public std::runtime_error {
  public:
   ApiError(int status, std::string code, std::string message, std::string field = "")
-      : std::runtime_error(message), status(status), code(std::move(code)), field(std::move(field)) {}
+      : std::runtime_error(message), status(status), code(std::move(code)), message(std::move(message)),
+        field(std::move(field)) {}
   int status;
   std::string code;
+  std::string message;
   std::string field;
 };
 
 Response json_response(const nlohmann::json& body, int status = 200);
 Response geojson_response(const nlohmann::json& body);
+
+// The one error shape of every answer, HTTP and WebSocket alike:
+//   {"code": "...", "message": "...", "field": "..." or null}
+nlohmann::json error_object(const std::string& code, const std::string& message, const std::string& field = "");
+// HTTP: status + {"error": error_object}.
 Response error_response(int status, const std::string& code, const std::string& message,
                         const std::string& field = "");
+inline Response error_response(const ApiError& e) { return error_response(e.status, e.code, e.message, e.field); }
+// WebSocket text message: {"type": "error", "error": error_object}.
+std::string ws_error_message(const std::string& code, const std::string& message, const std::string& field = "");
+inline std::string ws_error_message(const ApiError& e) { return ws_error_message(e.code, e.message, e.field); }
 
 }  // namespace tourmap::api

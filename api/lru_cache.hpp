@@ -1,5 +1,6 @@
 #pragma once
-// A small thread-safe LRU map bounded by total cost (bytes, or 1 per entry).
+// A small thread-safe LRU map bounded by total cost (bytes, or 1 per entry). Evicted values
+// that a request still holds (shared_ptr) live until it lets go.
 
 #include <functional>
 #include <list>
@@ -24,14 +25,16 @@ class LruCache {
     return it->second->value;
   }
 
+  // Inserts or replaces (a replaced entry's cost is updated). An entry dearer than the whole
+  // capacity is not kept (never worth evicting everything for), and neither is an older value.
   void put(const std::string& key, Value value, std::size_t cost = 1) {
-    if (cost > capacity_) return;  // never worth evicting everything for
     std::lock_guard lock(mutex_);
     if (auto it = index_.find(key); it != index_.end()) {
       used_ -= it->second->cost;
       order_.erase(it->second);
       index_.erase(it);
     }
+    if (cost > capacity_) return;
     order_.push_front({key, std::move(value), cost});
     index_[key] = order_.begin();
     used_ += cost;

@@ -72,6 +72,7 @@ std::vector<double> poi_ranks(const CityMetroData& d, RankSource source) {
 metro::VisualWorth make_visual_worth(const CityMetroData& d, RankSource source, const metro::WorthParams& params) {
   auto ranks = poi_ranks(d, source);
   std::vector<metro::WorthSource> sources;
+  sources.reserve(d.poi_xy.size());
   for (std::size_t i = 0; i < d.poi_xy.size(); ++i) sources.push_back({d.poi_xy[i], ranks[i], d.poi_station_km[i]});
   return metro::VisualWorth(std::move(sources), params);
 }

@@ -23,10 +23,6 @@ constexpr int kLayoutVersion = 4;
 using util::Clock;
 using util::ms_since;
 
-ApiError bad(const std::string& field, const std::string& message) {
-  return ApiError(400, "invalid_parameter", field + ": " + message, field);
-}
-
 double round1(double v) { return std::round(v * 10) / 10; }
 nlohmann::json xy(geo::XY p) { return nlohmann::json::array({round1(p.x), round1(p.y)}); }
 
@@ -146,9 +142,7 @@ LayoutRequest parse_layout_body(const nlohmann::json& body) {
 
 std::vector<double> poi_worth_geo(const CityMetroData& data, RankSource rank, const metro::WorthParams& params) {
   auto vw = make_visual_worth(data, rank, params);
-  std::vector<double> out;
-  for (const auto& p : data.poi_xy) out.push_back(vw.at(p));
-  return out;
+  return vw.at_points(data.poi_xy);  // batched: exact within the work budget, else bounded
 }
 
 std::shared_ptr<const CityLayout> compute_city_layout(const CityMetroData& d, const LayoutRequest& req,
@@ -161,9 +155,12 @@ std::shared_ptr<const CityLayout> compute_city_layout(const CityMetroData& d, co
   // 1. Visual worth (5.4.1) at every node and POI.
   auto t = Clock::now();
   auto vw = make_visual_worth(d, req.rank, req.worth);
-  std::vector<double> node_worth;
-  for (const auto& p : d.graph.pos) node_worth.push_back(vw.at(p));
-  for (const auto& p : d.poi_xy) result->poi_worth.push_back(vw.at(p));
+  std::vector<geo::XY> worth_points(d.graph.pos);  // nodes, then POIs: one batched evaluation
+  worth_points.insert(worth_points.end(), d.poi_xy.begin(), d.poi_xy.end());
+  auto worth = vw.at_points(worth_points);
+  const auto nodes_end = worth.begin() + static_cast<std::ptrdiff_t>(d.graph.pos.size());
+  std::vector<double> node_worth(worth.begin(), nodes_end);
+  result->poi_worth.assign(nodes_end, worth.end());
   double vw_ms = ms_since(t);
 
   // 2. Octilinear layout (5.4.2) with edge lengths from visual worth (eq. 5.3, 5.4) or uniform.

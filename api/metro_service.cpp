@@ -8,6 +8,7 @@
 #include "poi/serialize.hpp"
 #include "store/repo.hpp"
 #include "util/elapsed.hpp"
+#include "util/stop.hpp"
 
 #include <chrono>
 #include <cmath>
@@ -25,10 +26,6 @@ void set_server_timing(Response& r, Clock::time_point started) {
   char text[48];
   std::snprintf(text, sizeof text, "compute;dur=%.2f", ms_since(started));
   r.headers.emplace_back("Server-Timing", text);
-}
-
-ApiError bad(const std::string& field, const std::string& message) {
-  return ApiError(400, "invalid_parameter", field + ": " + message, field);
 }
 
 // A layout read back from the store: the positions the clusters need come from its JSON.
@@ -146,24 +143,56 @@ void MetroService::ClusterWriter::append_representative(std::string& out, std::u
   out += '}';
 }
 
+namespace {
+
+// Approximate heap bytes of the cached values (vectors by capacity), for the cache budgets.
+template <class T>
+std::size_t bytes_of(const std::vector<T>& v) {
+  return v.capacity() * sizeof(T);
+}
+
+std::size_t bytes_of(const CityMetroData& d) {
+  return sizeof(d) + bytes_of(d.graph.pos) + bytes_of(d.graph.edges) + bytes_of(d.poi_xy) + bytes_of(d.poi_station_km);
+}
+
+std::size_t bytes_of(const CityLayout& l) {
+  return sizeof(l) + l.body.capacity() + bytes_of(l.poi_layout) + bytes_of(l.poi_worth) + l.poi_outside.size() / 8;
+}
+
+std::size_t bytes_of(const poi::ClusterTree& t) { return sizeof(t) + bytes_of(t.nodes) + bytes_of(t.children); }
+
+}  // namespace
+
 MetroService::MetroService(Catalog& catalog, MipSolver mip, MetroLimits limits)
-    : catalog_(catalog), mip_(std::move(mip)), limits_(limits) {
+    : catalog_(catalog),
+      mip_(std::move(mip)),
+      limits_(limits),
+      data_(limits.data_cache_bytes),
+      layouts_(limits.layout_cache_bytes),
+      trees_(limits.tree_cache_bytes),
+      geo_worth_(limits.worth_cache_bytes),
+      geo_centers_(limits.worth_cache_bytes) {
   if (!mip_) mip_ = [](const metro::MipModel& m, double t, double gap) { return metro::solve_with_cbc(m, t, gap); };
 }
 
 std::shared_ptr<const CityMetroData> MetroService::data_for(const std::string& city_id) {
   require_slug(city_id, "city");
   auto city = catalog_.city(city_id);
-  if (!city) throw ApiError(404, "not_found", "no city '" + city_id + "'", "id");
+  if (!city) throw not_found("id", "city", city_id);
   auto key = city->info.id + "@" + std::to_string(city->info.version);
   if (auto hit = data_.get(key)) return *hit;
   auto d = make_city_metro_data(city);
-  data_.put(key, d);
+  data_.put(key, d, bytes_of(*d));
   return d;
 }
 
 std::shared_ptr<const CityLayout> MetroService::layout_for(const CityMetroData& data, const LayoutRequest& req,
                                                           bool* cached) {
+  if (data.graph.edges.size() > limits_.max_layout_edges)
+    throw ApiError(413, "too_large",
+                   "id: the network has " + std::to_string(data.graph.edges.size()) +
+                       " edges; layouts are made for at most " + std::to_string(limits_.max_layout_edges),
+                   "id");
   auto key = "layout:" + data.key + ":" + req.canonical();
   *cached = true;
   if (auto hit = layouts_.get(key)) return *hit;
@@ -179,7 +208,7 @@ std::shared_ptr<const CityLayout> MetroService::layout_for(const CityMetroData& 
         return computed;
       },
       &ran);
-  layouts_.put(key, layout);
+  layouts_.put(key, layout, bytes_of(*layout));
   return layout;
 }
 
@@ -203,14 +232,14 @@ std::shared_ptr<const poi::ClusterTree> MetroService::tree_for(const std::string
     store::cache_put(*db, key, "clusters", {"application/octet-stream", poi::serialize(*built)});
     return built;
   });
-  trees_.put(key, tree);
+  trees_.put(key, tree, bytes_of(*tree));
   return tree;
 }
 
 Response MetroService::layout(const Request& req, bool post) {
   auto params = post ? parse_layout_body(parse_json_body(req)) : parse_layout_query(req);
   auto data = data_for(req.param("id"));
-  if (data->graph.edges.empty()) throw ApiError(422, "empty_network", "city has no metro edges to lay out", "id");
+  if (data->graph.edges.empty()) throw ApiError(422, "empty_network", "id: the city has no metro edges to lay out", "id");
   bool cached = false;
   auto layout = layout_for(*data, params, &cached);
   Response r;
@@ -229,24 +258,29 @@ Response MetroService::visual_worth(const Request& req) {
   auto started = Clock::now();
   auto vw = make_visual_worth(*data, params.rank, params.worth);
   geo::BBox box = bbox ? *bbox : data->city->info.bbox;
-  std::vector<double> raw(width * height);
-  double max = 0;
-  for (std::size_t j = 0; j < height; ++j)
-    for (std::size_t i = 0; i < width; ++i) {
-      // Cell centres, rows from north to south (image order).
-      geo::LonLat p{box.min_lon + (box.max_lon - box.min_lon) * (i + 0.5) / width,
-                    box.max_lat - (box.max_lat - box.min_lat) * (j + 0.5) / height};
-      double v = vw.at(geo::project(data->projection, p));
-      raw[j * width + i] = v;
-      max = std::max(max, v);
-    }
-  nlohmann::json values = nlohmann::json::array();
-  for (double v : raw) values.push_back(max > 0 ? std::round(v / max * 1000) / 1000 : 0.0);
-  nlohmann::json stations = nlohmann::json::array();
+  // The raster's cell centres, rows from north to south (image order), projected; then the
+  // stations: one batched evaluation (exact within the work budget, else the bounded
+  // approximation; see metro/visual_worth.hpp).
+  const std::size_t cells = width * height;
   const auto& nodes = data->city->metro.nodes;
+  std::vector<geo::XY> points;
+  points.reserve(cells + nodes.size());
+  for (std::size_t j = 0; j < height; ++j) {
+    util::check_stop();
+    for (std::size_t i = 0; i < width; ++i)
+      points.push_back(geo::project(data->projection, {box.min_lon + (box.max_lon - box.min_lon) * (i + 0.5) / width,
+                                                       box.max_lat - (box.max_lat - box.min_lat) * (j + 0.5) / height}));
+  }
   for (std::size_t v = 0; v < nodes.size(); ++v)
-    if (nodes[v].is_station())
-      stations.push_back({{"id", nodes[v].id}, {"worth", max > 0 ? vw.at(data->graph.pos[v]) / max : 0.0}});
+    if (nodes[v].is_station()) points.push_back(data->graph.pos[v]);
+  const auto worth = vw.at_points(points);
+  double max = 0;
+  for (std::size_t k = 0; k < cells; ++k) max = std::max(max, worth[k]);
+  nlohmann::json values = nlohmann::json::array();
+  for (std::size_t k = 0; k < cells; ++k) values.push_back(max > 0 ? std::round(worth[k] / max * 1000) / 1000 : 0.0);
+  nlohmann::json stations = nlohmann::json::array();
+  for (std::size_t v = 0, s = cells; v < nodes.size(); ++v)
+    if (nodes[v].is_station()) stations.push_back({{"id", nodes[v].id}, {"worth", max > 0 ? worth[s++] / max : 0.0}});
   Response r = json_response({{"city", data->city->info.id},
                               {"bbox", bbox_json(box)},
                               {"width", width},
@@ -261,8 +295,18 @@ Response MetroService::visual_worth(const Request& req) {
 }
 
 MetroService::ClusterWindow MetroService::geo_window(const CityMetroData& data, const std::string* bbox_text) {
-  const auto box = bbox_text ? parse_bbox(*bbox_text, "bbox") : data.city->info.poi_bbox;
+  // Only the part of the window where the city has POIs matters, and it must be cut to that
+  // before projecting: the city's local transverse Mercator is meaningless far from the city
+  // (a whole-world window used to project to a box holding nothing, so 0 clusters).
+  const auto& pois = data.city->info.poi_bbox;
+  auto box = bbox_text ? parse_bbox(*bbox_text, "bbox") : pois;
+  box = {std::max(box.min_lon, pois.min_lon), std::max(box.min_lat, pois.min_lat), std::min(box.max_lon, pois.max_lon),
+         std::min(box.max_lat, pois.max_lat)};
   ClusterWindow w;
+  if (box.empty()) {  // no POI can be inside (or the city has none)
+    w.empty = true;
+    box = pois.empty() ? geo::BBox{data.city->info.bbox} : pois;  // something finite to project
+  }
   // The window in metres: the projected box's corners' extent.
   const geo::XY corners[] = {geo::project(data.projection, {box.min_lon, box.min_lat}),
                              geo::project(data.projection, {box.max_lon, box.max_lat}),
@@ -279,7 +323,7 @@ MetroService::ClusterWindow MetroService::geo_window(const CityMetroData& data, 
     worth = *hit;
   } else {
     worth = std::make_shared<const std::vector<double>>(poi_worth_geo(data, RankSource::automatic, {}));
-    geo_worth_.put(worth_key, worth);
+    geo_worth_.put(worth_key, worth, bytes_of(*worth));
   }
   const auto tree_key = "clusters:geo:" + data.key;
   w.tree = tree_for(tree_key, data.poi_xy, *worth, nullptr);
@@ -298,7 +342,7 @@ std::shared_ptr<const MetroService::GeoCenters> MetroService::geo_centers(
   made->tree = tree;
   made->centers.reserve(tree->nodes.size());
   for (const auto& node : tree->nodes) made->centers.push_back(geo::unproject(projection, node.center));
-  geo_centers_.put(tree_key, made);
+  geo_centers_.put(tree_key, made, bytes_of(made->centers));
   return made;
 }
 
@@ -329,7 +373,7 @@ Response MetroService::clusters(const Request& req) {
 
   // At least 2M active clusters where the tree allows, so a whole-map window fills the top M
   // and the M previews (see poi/active_clusters.hpp).
-  const auto active = poi::active_clusters(*w.tree, w.lo, w.hi, m, 2 * m);
+  const auto active = w.empty ? poi::ActiveClusters{} : poi::active_clusters(*w.tree, w.lo, w.hi, m, 2 * m);
   const ClusterWriter writer{*w.tree, data->city->pois, w.centers ? &w.centers->centers : nullptr};
   // Keys in alphabetical order, as nlohmann::json (std::map) wrote them before.
   Response r;

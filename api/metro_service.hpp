@@ -19,6 +19,15 @@ namespace tourmap::api {
 struct MetroLimits {
   std::size_t max_raster_side = 512;
   std::size_t max_m = 100;
+  // Layouts (and layout-space clusters) of networks with more edges are refused (413): the
+  // fast path's crossing tables grow with the square of the edges. The largest sample network
+  // has 349 (London); a regional rail network a few thousand.
+  std::size_t max_layout_edges = 5000;
+  // Memory the caches may hold (least recently used entries go first).
+  std::size_t data_cache_bytes = 128u << 20;     // per city version: projected network and POIs
+  std::size_t layout_cache_bytes = 256u << 20;   // per parameter set: the answer and POI positions
+  std::size_t tree_cache_bytes = 256u << 20;     // cluster trees (geographic and per layout)
+  std::size_t worth_cache_bytes = 64u << 20;     // POI worth and cluster centres in lon/lat
 };
 
 class MetroService {
@@ -48,6 +57,7 @@ class MetroService {
     std::shared_ptr<const poi::ClusterTree> tree;
     std::shared_ptr<const GeoCenters> centers;
     geo::XY lo, hi;
+    bool empty = false;  // the window holds no POI: no clusters
   };
   // Writes cluster objects as JSON; `centers` null: the tree is in layout space.
   struct ClusterWriter {
@@ -72,11 +82,13 @@ class MetroService {
   Catalog& catalog_;
   MipSolver mip_;
   MetroLimits limits_;
-  LruCache<std::shared_ptr<const CityMetroData>> data_{16};
-  LruCache<std::shared_ptr<const CityLayout>> layouts_{32};
-  LruCache<std::shared_ptr<const poi::ClusterTree>> trees_{32};
-  LruCache<std::shared_ptr<const std::vector<double>>> geo_worth_{16};
-  LruCache<std::shared_ptr<const GeoCenters>> geo_centers_{16};  // by geographic tree key
+  // Bounded in bytes (MetroLimits): a layout varies with its parameters, so a client can ask
+  // for many; a cluster tree of 100,000 POIs holds 16 MB.
+  LruCache<std::shared_ptr<const CityMetroData>> data_;
+  LruCache<std::shared_ptr<const CityLayout>> layouts_;
+  LruCache<std::shared_ptr<const poi::ClusterTree>> trees_;
+  LruCache<std::shared_ptr<const std::vector<double>>> geo_worth_;
+  LruCache<std::shared_ptr<const GeoCenters>> geo_centers_;  // by geographic tree key
   SingleFlight<std::shared_ptr<const CityLayout>> layout_flight_;
   SingleFlight<std::shared_ptr<const poi::ClusterTree>> tree_flight_;
 };

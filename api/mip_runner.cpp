@@ -1,5 +1,7 @@
 #include "mip_runner.hpp"
 
+#include "util/stop.hpp"
+
 #include <poll.h>
 #include <signal.h>
 #include <spawn.h>
@@ -69,10 +71,13 @@ MipSolver child_process_mip_solver(std::string executable, double grace_s) {
     std::string output;
     auto deadline = std::chrono::steady_clock::now() +
                     std::chrono::milliseconds(static_cast<long long>((time_limit_s + grace_s) * 1000));
-    bool killed = false;
+    // The request's own deadline and client (util/stop.hpp): a solve nobody waits for is killed.
+    const util::StopToken* stop = util::current_stop();
+    bool killed = false, stopped = false;
     while (written) {
       auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now()).count();
-      if (left <= 0) {
+      stopped = stop && stop->stop_requested();
+      if (left <= 0 || stopped) {
         kill(pid, SIGKILL);
         killed = true;
         break;
@@ -88,6 +93,7 @@ MipSolver child_process_mip_solver(std::string executable, double grace_s) {
     close(out_pipe[0]);
     int status = 0;
     waitpid(pid, &status, 0);
+    if (stopped) util::check_stop();  // throws util::Stopped
     if (killed) {
       metro::MipResult r;
       r.status = "killed";

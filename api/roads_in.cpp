@@ -1,6 +1,7 @@
 #include "roads_in.hpp"
 
 #include "geojson_in.hpp"
+#include "params.hpp"
 
 #include <cstring>
 #include <map>
@@ -8,8 +9,8 @@
 namespace tourmap::api {
 namespace {
 
-ApiError bad(const std::string& field, const std::string& message) {
-  return ApiError(400, "invalid_geojson", field + ": " + message, field);
+ApiError bad_geojson(const std::string& field, const std::string& message) {
+  return bad(field, message, "invalid_geojson");
 }
 
 // "type" when it is a string, else "" (json::value("type", "") throws type_error for others).
@@ -23,7 +24,7 @@ std::string type_of(const nlohmann::json& obj) {
 model::RoadNetwork parse_inline_roads(const nlohmann::json& fc, const std::string& field, std::size_t max_vertices) {
   if (!fc.is_object() || type_of(fc) != "FeatureCollection" || !fc.contains("features") ||
       !fc["features"].is_array())
-    throw bad(field, "expected a GeoJSON FeatureCollection of LineStrings");
+    throw bad_geojson(field, "expected a GeoJSON FeatureCollection of LineStrings");
   model::RoadNetwork net;
   std::map<std::pair<double, double>, std::uint32_t> node_at;
   std::size_t vertices = 0;
@@ -32,24 +33,24 @@ model::RoadNetwork parse_inline_roads(const nlohmann::json& fc, const std::strin
     auto f_field = field + ".features[" + std::to_string(i) + "]";
     const auto& f = features[i];
     if (!f.is_object() || !f.contains("geometry") || !f["geometry"].is_object())
-      throw bad(f_field, "a Feature with a geometry");
+      throw bad_geojson(f_field, "a Feature with a geometry");
     const auto& g = f["geometry"];
     auto type = type_of(g);
     std::vector<const nlohmann::json*> lines;
-    if (!g.contains("coordinates") || !g["coordinates"].is_array()) throw bad(f_field + ".geometry", "missing coordinates");
+    if (!g.contains("coordinates") || !g["coordinates"].is_array()) throw bad_geojson(f_field + ".geometry", "missing coordinates");
     if (type == "LineString") {
       lines.push_back(&g["coordinates"]);
     } else if (type == "MultiLineString") {
       for (const auto& l : g["coordinates"]) lines.push_back(&l);
     } else {
-      throw bad(f_field + ".geometry.type", "expected LineString or MultiLineString, got '" + type + "'");
+      throw bad_geojson(f_field + ".geometry.type", "expected LineString or MultiLineString, got '" + type + "'");
     }
     const auto props = f.value("properties", nlohmann::json::object());
     for (const auto* line : lines) {
-      if (!line->is_array() || line->size() < 2) throw bad(f_field + ".geometry", "a line needs at least 2 positions");
+      if (!line->is_array() || line->size() < 2) throw bad_geojson(f_field + ".geometry", "a line needs at least 2 positions");
       vertices += line->size();
       if (vertices > max_vertices)
-        throw ApiError(413, "too_large", field + ": more than " + std::to_string(max_vertices) + " vertices", field);
+        throw too_large(field, "more than " + std::to_string(max_vertices) + " vertices");
       model::RoadWay way;
       way.osm_id = static_cast<std::int64_t>(i);
       way.highway = props.is_object() && props.contains("highway") && props["highway"].is_string()
@@ -66,7 +67,7 @@ model::RoadNetwork parse_inline_roads(const nlohmann::json& fc, const std::strin
     }
   }
   net.edges = model::edges_of(net.ways);
-  if (net.edges.empty()) throw bad(field, "the road network is empty (no line with two distinct positions)");
+  if (net.edges.empty()) throw bad_geojson(field, "the road network is empty (no line with two distinct positions)");
   return net;
 }
 

@@ -1,7 +1,13 @@
 #pragma once
 // Routes: method + path pattern with {name} segments, e.g. /api/v1/cities/{id}/metro.
-// Each route says where it runs: on the IO threads (cheap, bounded work) or on the compute pool,
-// and who may call it: anyone (reads) or holders of an API key (writes).
+// Each route says where it runs, and who may call it: anyone (reads) or holders of an API key
+// (writes). Where it runs:
+//   io    - on the IO thread (microseconds: health, the API index)
+//   light - on the read pool: cheap, bounded reads (catalog, metro, POIs, roads), which must
+//           never wait behind expensive work
+//   heavy - on the compute pool: layouts, deformations, rasters, clusters, imports; at most a
+//           few per client address at once, each with a deadline and stopped when its client
+//           goes away
 
 #include "http.hpp"
 
@@ -12,7 +18,7 @@
 
 namespace tourmap::api {
 
-enum class Exec { io, compute };
+enum class Exec { io, light, heavy };
 enum class Access { open, api_key };  // api_key: checked by the server before the body is read
 
 using Handler = std::function<Response(Request&)>;
@@ -20,7 +26,7 @@ using Handler = std::function<Response(Request&)>;
 struct Route {
   std::string method;
   std::string pattern;  // also the metrics label
-  Exec exec = Exec::compute;
+  Exec exec = Exec::heavy;
   Handler handler;
   std::vector<std::string> segments;  // pattern split at '/'; "{x}" marks a parameter
   Access access = Access::open;

@@ -28,6 +28,8 @@ struct AppContext {
 // Limits applied by the handlers (documented in openapi.yaml).
 inline constexpr std::size_t kMaxPoiLimit = 10000;
 inline constexpr std::size_t kDefaultPoiLimit = 1000;
+inline constexpr std::size_t kMaxQueryCategories = 100;  // POST .../pois/query "categories"
+inline constexpr std::size_t kMaxCategoryBytes = 200;
 
 void add_system_routes(Router& router, AppContext& ctx);
 void add_city_routes(Router& router, AppContext& ctx);

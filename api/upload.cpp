@@ -1,5 +1,11 @@
 #include "upload.hpp"
 
+#include "http.hpp"
+
+#include <signal.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <cstdlib>
 #include <fstream>
 #include <stdexcept>
@@ -10,11 +16,47 @@ namespace tourmap::api {
 
 namespace fs = std::filesystem;
 
-UploadDir::UploadDir() {
-  std::string pattern = (fs::temp_directory_path() / "tourmap-upload-XXXXXX").string();
+namespace {
+
+constexpr std::string_view kPrefix = "tourmap-upload-";
+
+fs::path parent_or_temp(const fs::path& parent) { return parent.empty() ? fs::temp_directory_path() : parent; }
+
+// The pid in "tourmap-upload-<pid>-XXXXXX", or 0.
+pid_t owner_pid(const std::string& name) {
+  if (name.rfind(kPrefix, 0) != 0) return 0;
+  const char* p = name.c_str() + kPrefix.size();
+  char* end = nullptr;
+  const long pid = std::strtol(p, &end, 10);
+  if (end == p || *end != '-' || pid <= 0) return 0;
+  return static_cast<pid_t>(pid);
+}
+
+}  // namespace
+
+std::size_t remove_stale_uploads(const fs::path& parent) {
+  std::size_t removed = 0;
+  std::error_code ec;
+  const fs::path dir = parent.empty() ? fs::temp_directory_path(ec) : parent;
+  if (ec) return 0;
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const pid_t pid = owner_pid(it->path().filename().string());
+    if (pid == 0 || !it->is_directory(ec)) continue;
+    if (::kill(pid, 0) == 0 || errno != ESRCH) continue;  // alive (or not ours to ask about)
+    std::error_code rm_ec;
+    if (fs::remove_all(it->path(), rm_ec) != static_cast<std::uintmax_t>(-1) && !rm_ec) ++removed;
+  }
+  return removed;
+}
+
+UploadDir::UploadDir(const fs::path& parent) {
+  std::string pattern =
+      (parent_or_temp(parent) / (std::string(kPrefix) + std::to_string(::getpid()) + "-XXXXXX")).string();
   std::vector<char> buf(pattern.begin(), pattern.end());
   buf.push_back('\0');
-  if (!::mkdtemp(buf.data())) throw std::runtime_error("cannot create a temporary directory for the upload");
+  if (!::mkdtemp(buf.data()))
+    throw ApiError(507, "insufficient_storage", "the server cannot store the upload now (no temporary directory)",
+                   "body");
   dir_ = buf.data();
 }
 
@@ -28,7 +70,10 @@ std::string UploadDir::write(const std::string& name, std::string_view bytes) co
   std::ofstream out(path, std::ios::binary);
   out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
   out.close();
-  if (!out) throw std::runtime_error("cannot write the upload to " + path);
+  // Out of disk (or quota): the server's condition, not the client's; nothing was imported.
+  if (!out)
+    throw ApiError(507, "insufficient_storage", "the server cannot store the upload now (disk full?); nothing was imported",
+                   "body");
   return path;
 }
 

@@ -11,7 +11,9 @@ namespace tourmap::api {
 
 class UploadDir {
  public:
-  UploadDir();  // a fresh 0700 directory under the system temp dir; throws on failure
+  // A fresh 0700 directory "tourmap-upload-<pid>-XXXXXX" under `parent` (default: the system
+  // temp dir, $TMPDIR); throws on failure. The pid lets a later server tell whose it was.
+  explicit UploadDir(const std::filesystem::path& parent = {});
   ~UploadDir();
   UploadDir(const UploadDir&) = delete;
   UploadDir& operator=(const UploadDir&) = delete;
@@ -22,6 +24,12 @@ class UploadDir {
  private:
   std::filesystem::path dir_;
 };
+
+// Removes upload directories under `parent` (default: the system temp dir) left by processes
+// that no longer run: a server killed during an upload (kill -9, OOM) cannot remove its own.
+// Directories of running processes are left alone, so servers may share a temp dir. Returns
+// how many were removed; never throws.
+std::size_t remove_stale_uploads(const std::filesystem::path& parent = {});
 
 // File name extensions by content, for bodies sent without a `format`:
 //   OSM: "osm.pbf" (OSMHeader blob), "osm.gz" (gzip), "osm.bz2" (bzip2), "osm" (XML); "" unknown.

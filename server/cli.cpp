@@ -88,15 +88,27 @@ int cmd_serve(const std::vector<std::string>& args) {
        "cap on the Loop subdivision of crowd characters (-1: the scene's; 0: base meshes, fast to prepare)")
       ("io-threads", po::value(&c.io_threads)->default_value(c.io_threads), "threads for network IO")
       ("compute-threads", po::value(&c.compute_threads)->default_value(c.compute_threads),
-       "threads for computation (0: one per core)")
+       "threads for expensive requests: layouts, deformations, rasters, clusters, imports (0: two per core)")
       ("compute-queue", po::value(&c.compute_queue)->default_value(c.compute_queue),
        "queued compute requests before answering 503")
       ("compute-deadline", po::value(&c.compute_deadline_s)->default_value(c.compute_deadline_s),
-       "seconds a request may wait for a compute thread")
+       "seconds a request may wait for a compute thread (then 503)")
+      ("compute-timeout", po::value(&c.compute_timeout_s)->default_value(c.compute_timeout_s),
+       "seconds a computation may run before it is stopped (503)")
+      ("max-compute-per-client", po::value(&c.max_compute_per_client)->default_value(c.max_compute_per_client),
+       "compute requests a client address may have queued or running (429 beyond; 0: no cap)")
+      ("read-threads", po::value(&c.read_threads)->default_value(c.read_threads),
+       "threads for cheap reads (catalog, metro, POIs, roads), apart from the compute threads")
+      ("read-queue", po::value(&c.read_queue)->default_value(c.read_queue), "queued reads before answering 503")
+      ("read-deadline", po::value(&c.read_deadline_s)->default_value(c.read_deadline_s),
+       "seconds a read may wait for a read thread (then 503)")
       ("max-body", po::value(&c.max_body_bytes)->default_value(c.max_body_bytes), "request body limit (bytes)")
       ("max-upload", po::value(&c.max_upload_bytes)->default_value(c.max_upload_bytes),
        "body limit of write requests with a valid API key, e.g. imports (bytes)")
-      ("max-header", po::value(&c.max_header_bytes)->default_value(c.max_header_bytes), "request header limit (bytes)")
+      ("max-header", po::value(&c.max_header_bytes)->default_value(c.max_header_bytes),
+       "request header limit, and the limit of a chunked body's trailer (bytes, at most 61440)")
+      ("max-header-fields", po::value(&c.max_header_fields)->default_value(c.max_header_fields),
+       "header plus trailer fields a request may have")
       ("request-timeout", po::value(&c.request_timeout_s)->default_value(c.request_timeout_s),
        "seconds to receive a request / send a response")
       ("idle-timeout", po::value(&c.idle_timeout_s)->default_value(c.idle_timeout_s),
@@ -137,7 +149,17 @@ int cmd_serve(const std::vector<std::string>& args) {
     std::fprintf(stderr, "tourmap serve: --trusted-proxies: %s\n", e.what());
     return 2;
   }
-  if (c.compute_threads == 0) c.compute_threads = std::max(1u, std::thread::hardware_concurrency());
+  if (c.max_header_bytes < 1024 || c.max_header_bytes > kMaxHeaderBytesLimit || c.max_header_fields < 8) {
+    std::fprintf(stderr, "tourmap serve: --max-header must be 1024 to %zu bytes and --max-header-fields at least 8\n",
+                 kMaxHeaderBytesLimit);
+    return 2;
+  }
+  if (!(c.compute_deadline_s > 0) || !(c.compute_timeout_s > 0) || !(c.read_deadline_s > 0)) {
+    std::fprintf(stderr, "tourmap serve: --compute-deadline, --compute-timeout and --read-deadline must be positive\n");
+    return 2;
+  }
+  if (c.compute_threads == 0) c.compute_threads = 2 * std::max(1u, std::thread::hardware_concurrency());
+  if (c.read_threads == 0) c.read_threads = 1;
   if (c.io_threads == 0) c.io_threads = 1;
   if (!std::filesystem::is_directory(c.web_root))
     std::fprintf(stderr, "warning: web root %s does not exist; only the API is served\n", c.web_root.c_str());

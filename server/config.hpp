@@ -14,12 +14,20 @@ struct Config {
   std::string data_dir;            // sample data (../shared/data by default)
   std::string web_root;            // built web client
   unsigned io_threads = 2;
-  unsigned compute_threads = 0;    // 0: one per core
+  // Expensive requests (layouts, deformations, rasters, clusters, imports): the compute pool.
+  unsigned compute_threads = 0;    // 0: two per core (many of its tasks wait on a MIP child process)
   std::size_t compute_queue = 256;         // queued compute requests before 503
-  double compute_deadline_s = 30.0;        // a request still queued after this gets 503
+  double compute_deadline_s = 30.0;        // a request still queued after this gets 503 (at once)
+  double compute_timeout_s = 120.0;        // a running computation is stopped after this (503)
+  std::size_t max_compute_per_client = 2;  // queued or running per client address (429 beyond; 0: no cap)
+  // Cheap reads (catalog, metro, POIs, roads): their own pool, never behind the compute pool.
+  unsigned read_threads = 2;
+  std::size_t read_queue = 512;
+  double read_deadline_s = 10.0;
   std::size_t max_body_bytes = 1 << 20;    // 413 beyond
   std::size_t max_upload_bytes = 64 << 20; // bodies of write requests with a valid API key (imports)
-  std::size_t max_header_bytes = 16 << 10; // 431 beyond
+  std::size_t max_header_bytes = 16 << 10; // 431 beyond; also the budget of chunked trailers
+  std::size_t max_header_fields = 100;     // header plus trailer fields (431 beyond)
   double request_timeout_s = 30.0;         // to read a request once it started
   double idle_timeout_s = 60.0;            // keep-alive connection without a request
   double drain_timeout_s = 10.0;           // graceful shutdown: time for in-flight requests
@@ -36,5 +44,8 @@ struct Config {
 
 // Built-in defaults for paths (from the build: the source's ../shared/data and build/web).
 Config default_config();
+
+// The largest --max-header: Beast's field table holds names and values below 64 KiB.
+inline constexpr std::size_t kMaxHeaderBytesLimit = 60u << 10;
 
 }  // namespace tourmap::server

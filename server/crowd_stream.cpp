@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <set>
 
 namespace tourmap::server {
 
@@ -46,19 +47,22 @@ struct CrowdStreamer::RenderState {
   std::unique_ptr<render::CrowdRenderer> renderer;
   render::JpegEncoder encoder;
   std::map<std::string, int> model_ids;            // by character key
-  std::map<std::string, std::unique_ptr<PreparedScene>> scenes;  // by "scene/count"
+  // Prepared scene variants by "scene/count", least recently used evicted first (never one a
+  // stream is showing): each holds its placements and its occluder model on the GPU.
+  struct Variant {
+    std::unique_ptr<PreparedScene> prepared;
+    std::uint64_t last_used = 0;
+    std::size_t bytes = 0;
+  };
+  std::map<std::string, Variant> scenes;
+  std::uint64_t uses = 0;
+  std::size_t scene_bytes = 0;
   std::vector<std::uint8_t> rgba;
   std::vector<crowd::Placement> placements;
   std::uint64_t last_stream = 0;  // serial of the stream the renderer's PVS belongs to
 };
 
 namespace {
-
-std::string error_json(const std::string& code, const std::string& message, const std::string& field = "") {
-  return nlohmann::json{{"type", "error"},
-                        {"error", {{"code", code}, {"message", message}, {"field", field.empty() ? nullptr : nlohmann::json(field)}}}}
-      .dump();
-}
 
 // started_ms: when rendering of the frame started (ms since the Unix epoch), so a client's
 // receive time minus it is the whole frame latency: render, encode, send.
@@ -104,7 +108,7 @@ WsEndpoint CrowdStreamer::endpoint() {
   ep.on_open = [this](const std::shared_ptr<WsSession>& s) {
     std::lock_guard lock(mutex_);
     if (streams_.size() >= limits_.max_streams) {
-      s->send_text(error_json("too_many_streams",
+      s->send_text(api::ws_error_message("too_many_streams",
                               "the server streams to " + std::to_string(limits_.max_streams) +
                                   " clients at most; try again later"));
       s->close(websocket::close_code::try_again_later, "too many streams");
@@ -144,12 +148,12 @@ WsEndpoint CrowdStreamer::endpoint() {
       }
     }
     if (msg.is_discarded()) {
-      s->send_text(error_json("bad_request", "the message is not valid JSON", "type"));
+      s->send_text(api::ws_error_message("invalid_json", "the message is not valid JSON", "type"));
       return;
     }
     if (is_ack) {
       if (!msg.contains("frame") || !msg["frame"].is_number_unsigned()) {
-        s->send_text(error_json("bad_request", "an ack needs the frame id it acknowledges", "frame"));
+        s->send_text(api::ws_error_message("invalid_parameter", "frame: an ack needs the frame id it acknowledges", "frame"));
         return;
       }
       {
@@ -169,7 +173,7 @@ WsEndpoint CrowdStreamer::endpoint() {
       st->dirty = true;
       st->failed = false;
     } catch (const api::ApiError& e) {
-      s->send_text(error_json(e.code, e.what(), e.field));
+      s->send_text(api::ws_error_message(e));
       return;
     }
     wake_.notify_one();
@@ -238,21 +242,57 @@ void CrowdStreamer::run() {
   }
   // GL objects go before the context.
   render_->scenes.clear();
+  render_->scene_bytes = 0;
   render_->renderer.reset();
   render_->context.reset();
 }
 
+namespace {
+
+std::string variant_key(const api::CrowdView& view) {
+  const auto* spec = crowd::find_scene_spec(view.scene);
+  return view.scene + "/" + std::to_string(view.count > 0 ? view.count : spec->default_count);
+}
+
+// Host and GPU bytes a variant holds beyond the shared characters: its agents and obstacles,
+// and the occluder model (about 3 floats and 1 index per vertex, 3 indices per triangle).
+std::size_t variant_bytes(const PreparedScene& p) {
+  const auto boxes = crowd::boxes_model(p.scene);
+  return sizeof(PreparedScene) + p.scene.agents.capacity() * sizeof(p.scene.agents[0]) +
+         p.scene.occluders.capacity() * sizeof(p.scene.occluders[0]) +
+         boxes.positions.size() * sizeof(boxes.positions[0]) * 2 + boxes.indices.size() * sizeof(std::uint32_t);
+}
+
+}  // namespace
+
 PreparedScene& CrowdStreamer::prepare(const api::CrowdView& view, const std::shared_ptr<WsSession>& session) {
   const auto* spec = crowd::find_scene_spec(view.scene);
   const int count = view.count > 0 ? view.count : spec->default_count;
-  const std::string key = view.scene + "/" + std::to_string(count);
-  // Each (scene, count) variant keeps its placement and occluder model (on the GPU, which has no
-  // removal): a bound on variants bounds the memory a client can make the server hold.
-  constexpr std::size_t kMaxSceneVariants = 32;
-  if (auto it = render_->scenes.find(key); it != render_->scenes.end()) return *it->second;
-  if (render_->scenes.size() >= kMaxSceneVariants)
-    throw std::runtime_error("the server keeps at most " + std::to_string(kMaxSceneVariants) +
-                             " scene variants (scene and count); use a scene's default count or one already in use");
+  const std::string key = variant_key(view);
+  auto& scenes = render_->scenes;
+  if (auto it = scenes.find(key); it != scenes.end()) {
+    it->second.last_used = ++render_->uses;
+    return *it->second.prepared;
+  }
+  // Room for one more: evict the least recently used variants no stream is showing. With at
+  // most max_streams streams and kMaxSceneVariants above that, there is always one to evict.
+  std::set<std::string> showing;
+  {
+    std::lock_guard lock(mutex_);
+    for (const auto& [s, st] : streams_)
+      if (st->has_view) showing.insert(variant_key(st->view));
+  }
+  while (scenes.size() >= kMaxSceneVariants || render_->scene_bytes > kMaxSceneVariantBytes) {
+    auto victim = scenes.end();
+    for (auto it = scenes.begin(); it != scenes.end(); ++it)
+      if (!showing.count(it->first) && (victim == scenes.end() || it->second.last_used < victim->second.last_used))
+        victim = it;
+    if (victim == scenes.end()) break;  // all shown: the bound is max_streams variants then
+    render_->renderer->remove_model(victim->second.prepared->boxes_model);
+    render_->scene_bytes -= victim->second.bytes;
+    scenes.erase(victim);
+    ++variants_evicted_;
+  }
   auto progress = [&session, &view](const std::string& stage, const std::string& model, int done, int total) {
     session->send_text(nlohmann::json{{"type", "progress"}, {"scene", view.scene}, {"stage", stage},
                                       {"model", model}, {"done", done}, {"total", total}}
@@ -260,7 +300,11 @@ PreparedScene& CrowdStreamer::prepare(const api::CrowdView& view, const std::sha
   };
   // Inserted only once prepared: a failed preparation leaves nothing behind.
   auto prepared = prepare_scene(assets_, *render_->renderer, render_->model_ids, *spec, count, progress);
-  return *(render_->scenes[key] = std::move(prepared));
+  const std::size_t bytes = variant_bytes(*prepared);
+  render_->scene_bytes += bytes;
+  auto& slot = scenes[key];
+  slot = {std::move(prepared), ++render_->uses, bytes};
+  return *slot.prepared;
 }
 
 namespace {
@@ -364,7 +408,7 @@ void CrowdStreamer::render_one(Stream& st, const std::shared_ptr<WsSession>& ses
                            .dump());
   } catch (const std::exception& e) {
     std::fprintf(stderr, "crowd: stream failed: %s\n", e.what());
-    session->send_text(error_json("unavailable", std::string("cannot render the scene: ") + e.what()));
+    session->send_text(api::ws_error_message("unavailable", std::string("cannot render the scene: ") + e.what()));
     std::lock_guard lock(mutex_);
     st.failed = true;
   }

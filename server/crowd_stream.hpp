@@ -33,6 +33,12 @@ class CrowdStreamer {
 
   std::size_t streams() const;
   std::size_t frames_sent() const { return frames_sent_.load(); }
+  std::size_t variants_evicted() const { return variants_evicted_.load(); }
+
+  // Prepared scene variants (scene and character count) kept at once, and their bytes beyond
+  // the shared characters; least recently used ones not on screen are evicted beyond these.
+  static constexpr std::size_t kMaxSceneVariants = 12;
+  static constexpr std::size_t kMaxSceneVariantBytes = 128u << 20;
 
  private:
   struct Stream;
@@ -48,6 +54,7 @@ class CrowdStreamer {
   bool stopping_ = false;
   std::thread thread_;
   std::atomic<std::size_t> frames_sent_{0};
+  std::atomic<std::size_t> variants_evicted_{0};
   struct RenderState;
   std::unique_ptr<RenderState> render_;  // touched only by the render thread
 };

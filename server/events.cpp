@@ -2,6 +2,8 @@
 
 #include "ws_session.hpp"
 
+#include "api/http.hpp"
+
 #include <nlohmann/json.hpp>
 
 #include <cstdio>
@@ -32,7 +34,7 @@ WsEndpoint EventHub::endpoint() {
     try {
       s->send_text(current_event("hello"));
     } catch (const std::exception& e) {
-      s->send_text(nlohmann::json({{"type", "error"}, {"code", "unavailable"}, {"message", e.what()}}).dump());
+      s->send_text(api::ws_error_message("unavailable", std::string("cannot read the catalog: ") + e.what()));
     }
   };
   ep.on_text = [](const std::shared_ptr<WsSession>& s, const std::string& text) {
@@ -42,7 +44,7 @@ WsEndpoint EventHub::endpoint() {
       s->send_text(R"({"type":"pong"})");
       return;
     }
-    s->send_text(R"({"type":"error","code":"invalid_message","message":"expected {\"type\":\"ping\"}","field":"type"})");
+    s->send_text(api::ws_error_message("invalid_message", "type: expected {\"type\":\"ping\"}", "type"));
   };
   ep.on_close = [this](const std::shared_ptr<WsSession>& s) {
     std::lock_guard lock(mutex_);

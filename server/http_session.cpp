@@ -4,10 +4,13 @@
 #include "url.hpp"
 #include "ws_session.hpp"
 
+#include "util/stop.hpp"
+
 #include <boost/asio/dispatch.hpp>
 #include <boost/asio/post.hpp>
 #include <boost/beast/websocket.hpp>
 
+#include <atomic>
 #include <cstdio>
 #include <limits>
 
@@ -34,13 +37,32 @@ RequestFacts facts_of(const http::request<http::string_body>& req) {
   return f;
 }
 
-// Runs a handler, turning exceptions into error responses: ApiError keeps its status; anything
-// else is a server fault (500), logged, never a crash.
-api::Response run_handler(const api::Route& route, api::Request& req) {
+// nginx's status for "the client closed the connection before the answer": metrics and the
+// access log only, never sent.
+constexpr int kClientClosedRequest = 499;
+
+// Runs a handler, turning exceptions into error responses: ApiError keeps its status; a
+// computation stopped at its deadline is a 503, one whose client left a 499; anything else is
+// a server fault (500), logged, never a crash.
+api::Response run_handler(const api::Route& route, api::Request& req, double timeout_s) {
   try {
     return route.handler(req);
   } catch (const api::ApiError& e) {
-    return api::error_response(e.status, e.code, e.what(), e.field);
+    return api::error_response(e);
+  } catch (const util::Stopped& e) {
+    if (e.reason == util::Stopped::Reason::client_gone) {
+      api::Response gone;
+      gone.status = kClientClosedRequest;
+      return gone;
+    }
+    char text[160];
+    std::snprintf(text, sizeof text,
+                  "the computation was stopped at its limit of %g s; retry later or ask for less (a coarser grid, "
+                  "a smaller window, a shorter time limit)",
+                  timeout_s);
+    auto r = api::error_response(503, "timeout", text);
+    r.headers.emplace_back("Retry-After", "5");
+    return r;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s %s: %s\n", req.method.c_str(), req.path.c_str(), e.what());
     return api::error_response(500, "internal", "internal error while handling the request");
@@ -67,7 +89,7 @@ http::response<http::string_body> finish_or_fail(api::Response r, const RequestF
 }  // namespace
 
 HttpSession::HttpSession(net::ip::tcp::socket&& socket, ServerState& state)
-    : stream_(std::move(socket)), state_(state) {
+    : stream_(std::move(socket)), buffer_(state.config.max_header_bytes + (8u << 10)), state_(state) {
   beast::error_code ec;
   auto ep = stream_.socket().remote_endpoint(ec);
   remote_ = ec ? "-" : ep.address().to_string();
@@ -94,7 +116,7 @@ void HttpSession::read_header() {
   origin_.clear();
   client_ = remote_;
   write_access_ = WriteAccess::not_needed;
-  parser_.emplace();
+  parser_.emplace(state_.config.max_header_fields, state_.config.max_header_bytes);
   // Beast checks a Content-Length against the limit while parsing the header, before we know
   // whether the request is an authorised upload: the limit is applied in on_header. (Not
   // boost::none: Beast 1.74 compares the length against the optional, and none is the smallest.)
@@ -144,6 +166,7 @@ void HttpSession::fail_read(int status, const std::string& code, const std::stri
   target_ = "-";
   RequestFacts facts;
   facts.keep_alive = false;  // the stream is not in a known state: answer and close
+  unread_input_ = true;
   send(finish_response(api::error_response(status, code, message), facts, state_.config), "invalid");
 }
 
@@ -159,14 +182,18 @@ void HttpSession::on_read(beast::error_code ec) {
     target_ = std::string(parser_->get().target());
     RequestFacts facts;
     facts.keep_alive = false;  // the body was not read
+    unread_input_ = true;
     route_label_ = "unauthorized";
     return refuse_write(facts);
   }
   if (ec == http::error::body_limit)
     return fail_read(413, "payload_too_large", "request body exceeds " + std::to_string(body_limit()) + " bytes");
-  if (ec == http::error::header_limit)
+  // header_limit: the header's bytes, or the header and trailer fields' count, or the trailer's
+  // bytes; buffer_overflow: a header or trailer that outgrew the connection's buffer.
+  if (ec == http::error::header_limit || ec == http::error::buffer_overflow)
     return fail_read(431, "header_too_large",
-                     "request header exceeds " + std::to_string(state_.config.max_header_bytes) + " bytes");
+                     "request header or chunked trailer exceeds " + std::to_string(state_.config.max_header_bytes) +
+                         " bytes or " + std::to_string(state_.config.max_header_fields) + " fields");
   if (ec) return fail_read(400, "bad_request", "malformed HTTP request: " + ec.message());
 
   Request req = parser_->release();
@@ -268,34 +295,110 @@ void HttpSession::handle(Request&& req) {
   route_label_ = route.pattern;
   if (route.access == api::Access::api_key && write_access_ != WriteAccess::granted) return refuse_write(facts);
   if (route.exec == api::Exec::io) {
-    auto r = run_handler(route, areq);
+    auto r = run_handler(route, areq, 0.0);
     return send(finish_response(std::move(r), facts, state_.config), route_label_);
   }
 
-  // Compute routes: the handler runs on the pool; the result comes back to this connection's
-  // strand to be written, finished (gzip) there when small, else on the pool before.
+  run_on_pool(route, std::move(areq), facts);
+}
+
+void HttpSession::run_on_pool(const api::Route& route, api::Request&& areq, const RequestFacts& facts) {
+  const bool heavy = route.exec == api::Exec::heavy;
+  const Config& config = state_.config;
+  ComputePool& pool = heavy ? state_.compute_pool : state_.read_pool;
+  const double wait_s = heavy ? config.compute_deadline_s : config.read_deadline_s;
+  const double timeout_s = heavy ? config.compute_timeout_s : 0.0;
+  auto cancelled = std::make_shared<std::atomic<bool>>(false);
   auto self = shared_from_this();
-  auto deadline = Clock::now() + seconds(state_.config.compute_deadline_s);
-  auto task = [self, &route, areq = std::move(areq), facts](bool expired) mutable {
-    api::Response r = expired ? api::error_response(503, "overloaded", "the request waited too long in the queue")
-                              : run_handler(route, areq);
-    if (expired) r.headers.emplace_back("Retry-After", "1");
-    const Config& config = self->state_.config;
+  auto task = [self, &route, areq = std::move(areq), facts, cancelled, wait_s, timeout_s](bool expired) mutable {
+    api::Response r;
+    if (expired) {
+      char text[96];
+      std::snprintf(text, sizeof text, "the server is busy: the request waited %g s for a worker; retry shortly", wait_s);
+      r = api::error_response(503, "overloaded", text);
+      r.headers.emplace_back("Retry-After", "2");
+    } else if (cancelled->load()) {
+      r.status = kClientClosedRequest;  // left while queued: not computed at all
+    } else {
+      util::StopToken token;
+      token.cancelled = cancelled.get();
+      if (timeout_s > 0) token.deadline = util::StopToken::Clock::now() + seconds(timeout_s);
+      util::StopScope scope(token);
+      r = run_handler(route, areq, timeout_s);
+    }
+    if (r.status == kClientClosedRequest)
+      return net::post(self->stream_.get_executor(), [self] { self->finish_abandoned(); });
     if (r.body.size() <= kFinishOnIoMaxBytes) {
       net::post(self->stream_.get_executor(), [self, r = std::move(r), facts]() mutable {
+        self->stop_watching_client();
         self->send(finish_or_fail(std::move(r), facts, self->state_.config), self->route_label_);
       });
       return;
     }
-    net::post(self->stream_.get_executor(), [self, res = finish_or_fail(std::move(r), facts, config)]() mutable {
-      self->send(std::move(res), self->route_label_);
-    });
+    net::post(self->stream_.get_executor(),
+              [self, res = finish_or_fail(std::move(r), facts, self->state_.config)]() mutable {
+                self->stop_watching_client();
+                self->send(std::move(res), self->route_label_);
+              });
   };
-  if (!state_.pool.submit(std::move(task), deadline)) {
-    auto r = api::error_response(503, "overloaded", "the server is busy; retry shortly");
+  const auto admission = pool.admit(std::move(task), Clock::now() + seconds(wait_s), client_);
+  if (admission != ComputePool::Admission::accepted) return refuse_admission(admission, heavy, facts);
+  if (heavy) watch_client(std::move(cancelled));
+}
+
+void HttpSession::refuse_admission(ComputePool::Admission admission, bool heavy, const RequestFacts& facts) {
+  api::Response r;
+  if (admission == ComputePool::Admission::client_busy) {
+    const auto cap = state_.config.max_compute_per_client;
+    r = api::error_response(429, "too_many_computations",
+                            "this address already has " + std::to_string(cap) + " expensive request" +
+                                (cap == 1 ? "" : "s") +
+                                " (layouts, deformations, rasters, clusters, imports) queued or running, the most "
+                                "it may have; send the next when one is answered");
     r.headers.emplace_back("Retry-After", "1");
-    send(finish_response(std::move(r), facts, state_.config), route_label_);
+  } else {
+    r = api::error_response(503, "overloaded",
+                            std::string("the server is busy: its ") + (heavy ? "compute" : "read") +
+                                " queue is full; retry shortly");
+    r.headers.emplace_back("Retry-After", "1");
   }
+  send(finish_response(std::move(r), facts, state_.config), route_label_);
+}
+
+void HttpSession::watch_client(std::shared_ptr<std::atomic<bool>> cancelled) {
+  watching_client_ = true;
+  stream_.socket().async_wait(net::socket_base::wait_read,
+                              [self = shared_from_this(), cancelled](beast::error_code ec) {
+                                self->watching_client_ = false;
+                                if (ec) return;  // stop_watching_client (the answer is ready) or a socket error
+                                // Readable: either the client pipelined its next request (kept for
+                                // later: a peek does not consume it) or it closed the connection.
+                                char byte = 0;
+                                beast::error_code peek_ec;
+                                const auto n = self->stream_.socket().receive(
+                                    net::buffer(&byte, 1), net::socket_base::message_peek, peek_ec);
+                                if (peek_ec || n == 0) cancelled->store(true);
+                              });
+}
+
+void HttpSession::stop_watching_client() {
+  if (!watching_client_) return;
+  beast::error_code ec;
+  stream_.socket().cancel(ec);  // only the wait is pending while a request computes
+  watching_client_ = false;
+}
+
+void HttpSession::finish_abandoned() {
+  stop_watching_client();
+  route_label_ = route_label_.empty() ? "unmatched" : route_label_;
+  const double ready_s = std::chrono::duration<double>(Clock::now() - started_).count();
+  state_.metrics.observe(route_label_, method_, kClientClosedRequest, ready_s);
+  const double ms = ready_s * 1000.0;
+  state_.access_log.write(client_, method_, target_, kClientClosedRequest, 0, ms);
+  if (counted_) --state_.in_flight;
+  counted_ = false;
+  busy_ = false;
+  close();
 }
 
 std::size_t HttpSession::body_limit() const {
@@ -404,6 +507,7 @@ void HttpSession::on_write(bool close_after, beast::error_code ec, std::size_t b
   counted_ = false;
   response_.reset();
   busy_ = false;
+  if (!ec && close_after && unread_input_) return linger_close();
   if (ec || close_after) return close();
   read_header();
 }
@@ -417,6 +521,23 @@ void HttpSession::close() {
   beast::error_code ec;
   stream_.socket().shutdown(net::ip::tcp::socket::shutdown_both, ec);
   stream_.socket().close(ec);
+}
+
+void HttpSession::linger_close() {
+  unread_input_ = false;
+  beast::error_code ec;
+  stream_.socket().shutdown(net::ip::tcp::socket::shutdown_send, ec);  // the client sees our end
+  if (ec) return close();
+  stream_.expires_after(std::chrono::seconds(kLingerSeconds));
+  linger_more();
+}
+
+void HttpSession::linger_more() {
+  stream_.async_read_some(net::buffer(discard_), [self = shared_from_this()](beast::error_code ec, std::size_t n) {
+    self->lingered_ += n;
+    if (ec || self->lingered_ >= kLingerBytes) return self->close();  // EOF, timeout or enough
+    self->linger_more();
+  });
 }
 
 }  // namespace tourmap::server

@@ -26,11 +26,22 @@ std::string number(double v) {
   return buf;
 }
 
+// Methods from a closed set: a client can send any token as a method, and every new label value
+// would be a new series kept for the life of the process.
+const std::string& method_label(const std::string& method) {
+  static const std::string kKnown[] = {"GET", "HEAD", "POST", "PUT", "DELETE", "OPTIONS", "PATCH", "-"};
+  static const std::string kOther = "other";
+  for (const auto& m : kKnown)
+    if (m == method) return m;
+  return kOther;
+}
+
 }  // namespace
 
 void Metrics::observe(const std::string& route, const std::string& method, int status, double seconds) {
+  if (status < 100 || status > 599) status = 0;  // a closed set too
   std::lock_guard lock(mutex_);
-  ++requests_[{route, method, status}];
+  ++requests_[{route, method_label(method), status}];
   auto& h = latency_[route];
   for (std::size_t i = 0; i < kBuckets.size(); ++i)
     if (seconds <= kBuckets[i]) ++h.buckets[i];

@@ -1,6 +1,8 @@
 #pragma once
 // Request metrics in the Prometheus text format: per route (the route pattern, so ids do not
-// explode the label space), method and status, a counter and a latency histogram.
+// explode the label space), method and status, a counter and a latency histogram. Every label
+// comes from a closed set: routes are patterns or fixed names, methods outside the standard
+// ones count as "other", statuses are three-digit codes.
 
 #include <array>
 #include <functional>

@@ -6,6 +6,7 @@
 #include "server_state.hpp"
 #include "ws_session.hpp"
 
+#include "api/upload.hpp"
 #include "store/api_keys.hpp"
 #include "store/migrate.hpp"
 
@@ -37,9 +38,21 @@ void add_gauges(ServerState& state) {
   state.metrics.add_gauge("tourmap_ws_connections", "Open WebSocket connections.",
                           [&state] { return static_cast<double>(state.ws_sessions.size()); });
   state.metrics.add_gauge("tourmap_compute_queued", "Requests waiting for a compute thread.",
-                          [&state] { return static_cast<double>(state.pool.queued()); });
+                          [&state] { return static_cast<double>(state.compute_pool.queued()); });
   state.metrics.add_gauge("tourmap_compute_busy", "Compute threads running a request.",
-                          [&state] { return static_cast<double>(state.pool.busy()); });
+                          [&state] { return static_cast<double>(state.compute_pool.busy()); });
+  state.metrics.add_gauge("tourmap_compute_clients", "Client addresses with compute requests queued or running.",
+                          [&state] { return static_cast<double>(state.compute_pool.clients()); });
+  state.metrics.add_gauge("tourmap_compute_expired_in_queue",
+                          "Compute requests answered 503 because they waited past the deadline (grows).",
+                          [&state] { return static_cast<double>(state.compute_pool.expired_in_queue()); });
+  state.metrics.add_gauge("tourmap_read_queued", "Reads waiting for a read thread.",
+                          [&state] { return static_cast<double>(state.read_pool.queued()); });
+  state.metrics.add_gauge("tourmap_read_busy", "Read threads running a request.",
+                          [&state] { return static_cast<double>(state.read_pool.busy()); });
+  state.metrics.add_gauge("tourmap_io_handler_exceptions",
+                          "Exceptions that escaped a connection's handlers and were caught by an IO thread (grows).",
+                          [&state] { return static_cast<double>(state.handler_exceptions.load()); });
   state.metrics.add_gauge("tourmap_rate_limit_clients",
                           "Client addresses the rate limiter tracks (requests refused: status 429, route rate_limited).",
                           [&state] {
@@ -48,12 +61,54 @@ void add_gauges(ServerState& state) {
                           });
 }
 
-void accept_loop(tcp::acceptor& acceptor, net::io_context& ioc, ServerState& state) {
-  acceptor.async_accept(net::make_strand(ioc), [&](boost::system::error_code ec, tcp::socket socket) {
-    if (ec == net::error::operation_aborted || !acceptor.is_open()) return;
-    if (!ec) std::make_shared<HttpSession>(std::move(socket), state)->run();
-    accept_loop(acceptor, ioc, state);
-  });
+// Accepts connections. When accepting fails (the process is out of file descriptors: EMFILE,
+// or the system: ENFILE, ENOBUFS, ENOMEM), the pending connection stays in the listen queue
+// and the next accept would fail at once: without a pause the loop spins a core at 100 %.
+// It waits 100 ms instead (and says so once per episode); connections are accepted again as
+// soon as descriptors are free.
+struct AcceptLoop {
+  tcp::acceptor& acceptor;
+  net::io_context& ioc;
+  ServerState& state;
+  net::steady_timer pause{ioc};
+  bool failing = false;
+
+  void next() {
+    acceptor.async_accept(net::make_strand(ioc), [this](boost::system::error_code ec, tcp::socket socket) {
+      if (ec == net::error::operation_aborted || !acceptor.is_open()) return;
+      if (!ec) {
+        if (failing) std::fprintf(stderr, "accept: accepting connections again\n");
+        failing = false;
+        std::make_shared<HttpSession>(std::move(socket), state)->run();
+        return next();
+      }
+      if (!failing) std::fprintf(stderr, "accept: %s; pausing 100 ms between attempts\n", ec.message().c_str());
+      failing = true;
+      pause.expires_after(std::chrono::milliseconds(100));
+      pause.async_wait([this](boost::system::error_code wait_ec) {
+        if (!wait_ec) next();
+      });
+    });
+  }
+};
+
+// Runs the io_context until it stops. An exception out of a handler (none is expected: the
+// connections catch what their handlers throw) is logged and counted; its connection is
+// dropped by the unwinding and the thread goes on serving the others instead of ending the
+// process.
+void run_io(net::io_context& ioc, ServerState& state) {
+  for (;;) {
+    try {
+      ioc.run();
+      return;
+    } catch (const std::exception& e) {
+      ++state.handler_exceptions;
+      std::fprintf(stderr, "error: a connection handler threw (connection dropped): %s\n", e.what());
+    } catch (...) {
+      ++state.handler_exceptions;
+      std::fprintf(stderr, "error: a connection handler threw a non-standard exception (connection dropped)\n");
+    }
+  }
 }
 
 }  // namespace
@@ -64,6 +119,8 @@ int serve(const Config& config, const std::function<void(unsigned short)>& on_li
     auto conn = db.acquire();
     for (const auto& name : store::migrate(*conn)) std::printf("migrated: %s\n", name.c_str());
   }
+  if (auto stale = api::remove_stale_uploads())
+    std::printf("removed %zu upload director%s left by stopped servers\n", stale, stale == 1 ? "y" : "ies");
   api::Catalog catalog(db);
   ServerState state(config);  // declared before the io_context: sessions refer to it until the end
   api::DeformService deform(catalog);
@@ -85,6 +142,9 @@ int serve(const Config& config, const std::function<void(unsigned short)>& on_li
                           [&crowd] { return static_cast<double>(crowd.streams()); });
   state.metrics.add_gauge("tourmap_crowd_frames_sent", "Crowd frames sent since the start (grows).",
                           [&crowd] { return static_cast<double>(crowd.frames_sent()); });
+  state.metrics.add_gauge("tourmap_crowd_variants_evicted",
+                          "Prepared crowd scene variants (scene, count) evicted to make room (grows).",
+                          [&crowd] { return static_cast<double>(crowd.variants_evicted()); });
 
   tcp::acceptor acceptor(ioc);
   tcp::endpoint endpoint(net::ip::make_address(config.host), config.port);
@@ -93,13 +153,14 @@ int serve(const Config& config, const std::function<void(unsigned short)>& on_li
   acceptor.bind(endpoint);
   acceptor.listen(net::socket_base::max_listen_connections);
   unsigned short port = acceptor.local_endpoint().port();
-  std::printf("tourmap %s listening on http://%s:%u (db %s, web %s, %u io + %u compute threads)\n", TOURMAP_VERSION,
-              config.host.c_str(), port, config.db_path.c_str(), config.web_root.c_str(), config.io_threads,
-              state.pool.threads());
+  std::printf("tourmap %s listening on http://%s:%u (db %s, web %s, %u io + %u read + %u compute threads)\n",
+              TOURMAP_VERSION, config.host.c_str(), port, config.db_path.c_str(), config.web_root.c_str(),
+              config.io_threads, state.read_pool.threads(), state.compute_pool.threads());
   std::fflush(stdout);
   if (on_listening) on_listening(port);
 
-  accept_loop(acceptor, ioc, state);
+  AcceptLoop accept_loop{acceptor, ioc, state};
+  accept_loop.next();
   events.start();
   crowd.start();
 
@@ -138,12 +199,13 @@ int serve(const Config& config, const std::function<void(unsigned short)>& on_li
   });
 
   std::vector<std::thread> threads;
-  for (unsigned i = 1; i < config.io_threads; ++i) threads.emplace_back([&ioc] { ioc.run(); });
-  ioc.run();
+  for (unsigned i = 1; i < config.io_threads; ++i) threads.emplace_back([&ioc, &state] { run_io(ioc, state); });
+  run_io(ioc, state);
   for (auto& t : threads) t.join();
 
   crowd.stop();
-  state.pool.shutdown();  // before the io_context goes: finished tasks post into it
+  state.compute_pool.shutdown();  // before the io_context goes: finished tasks post into it
+  state.read_pool.shutdown();
   db.close_idle();
   std::printf("shutdown: done\n");
   std::fflush(stdout);

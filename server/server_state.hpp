@@ -68,7 +68,8 @@ class SessionRegistry {
 struct ServerState {
   explicit ServerState(Config cfg)
       : config(std::move(cfg)),
-        pool(config.compute_threads, config.compute_queue),
+        compute_pool({config.compute_threads, config.compute_queue, config.max_compute_per_client}),
+        read_pool({config.read_threads, config.read_queue, 0}),
         access_log(config.access_log),
         static_files(config.web_root),
         rate_limiter(rate_limiter_options(config)),
@@ -85,7 +86,8 @@ struct ServerState {
   Config config;
   api::Router router;
   std::map<std::string, WsEndpoint> ws_endpoints;  // by path
-  ComputePool pool;
+  ComputePool compute_pool;  // Exec::heavy routes
+  ComputePool read_pool;     // Exec::light routes
   Metrics metrics;
   AccessLog access_log;
   StaticFiles static_files;
@@ -98,6 +100,7 @@ struct ServerState {
   std::function<bool(std::string_view key)> verify_api_key;
   std::atomic<bool> stopping{false};
   std::atomic<long> in_flight{0};  // requests read and not yet answered
+  std::atomic<std::uint64_t> handler_exceptions{0};  // exceptions that reached an IO thread's run loop
 };
 
 }  // namespace tourmap::server

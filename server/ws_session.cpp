@@ -1,5 +1,7 @@
 #include "ws_session.hpp"
 
+#include "api/http.hpp"
+
 #include <boost/asio/dispatch.hpp>
 #include <boost/asio/post.hpp>
 
@@ -23,7 +25,10 @@ void WsSession::accept(beast::http::request<beast::http::string_body>&& req) {
         beast::http::status::service_unavailable, req.version());
     res->set(beast::http::field::content_type, "application/json");
     res->set(beast::http::field::retry_after, "5");
-    res->body() = R"({"error":{"code":"too_many_streams","message":"WebSocket connection limit reached","field":null}})";
+    res->body() = api::error_response(503, "too_many_connections",
+                                      "the server holds " + std::to_string(state_.config.max_ws_connections) +
+                                          " WebSocket connections, the most it may; retry later")
+                      .body;
     res->prepare_payload();
     res->keep_alive(false);
     beast::http::async_write(ws_.next_layer(), *res, [self = shared_from_this(), res](beast::error_code, std::size_t) {
@@ -130,7 +135,7 @@ void WsSession::on_read(beast::error_code ec, std::size_t) {
   if (ws_.got_text() && endpoint_.on_text) {
     endpoint_.on_text(shared_from_this(), text);
   } else if (!ws_.got_text()) {
-    send_text(R"({"type":"error","code":"unsupported","message":"send JSON text messages"})");
+    send_text(api::ws_error_message("unsupported", "send JSON text messages, not binary ones", "type"));
   }
   read();
 }

@@ -206,6 +206,7 @@ bool delete_city(Db& db, const std::string& id) {
   auto st = db.prepare("DELETE FROM cities WHERE id = ?");
   st.bind(1, id).run();
   bool deleted = db.changes() > 0;
+  if (deleted) record_deletion(db, "city", id);  // so the same files import again
   tx.commit();
   return deleted;
 }

@@ -3,10 +3,22 @@
 namespace tourmap::store {
 
 std::optional<std::string> last_fingerprint(Db& db, const std::string& kind, const std::string& target_id) {
-  auto st = db.prepare("SELECT fingerprint FROM imports WHERE kind = ? AND target_id = ? ORDER BY id DESC LIMIT 1");
-  st.bind(1, kind).bind(2, target_id);
+  // Imports up to the target's last deletion describe nothing stored any more.
+  auto st = db.prepare(
+      "SELECT fingerprint FROM imports WHERE kind = ? AND target_id = ? AND id > COALESCE("
+      "(SELECT MAX(last_import_id) FROM deletions WHERE kind = ? AND target_id = ?), 0)"
+      " ORDER BY id DESC LIMIT 1");
+  st.bind(1, kind).bind(2, target_id).bind(3, kind == "roads" ? "roads" : "city").bind(4, target_id);
   if (!st.step()) return std::nullopt;
   return st.text(0);
+}
+
+void record_deletion(Db& db, const std::string& kind, const std::string& target_id) {
+  db.prepare("INSERT INTO deletions (kind, target_id, last_import_id)"
+             " VALUES (?, ?, (SELECT COALESCE(MAX(id), 0) FROM imports))")
+      .bind(1, kind)
+      .bind(2, target_id)
+      .run();
 }
 
 std::int64_t record_import(Db& db, const ImportRecord& record) {

@@ -1,15 +1,20 @@
 #include "importer.hpp"
 
 #include "load/file.hpp"
+#include "load/load_error.hpp"
 #include "load/metro_load.hpp"
 #include "load/osm_roads.hpp"
 #include "load/poi_load.hpp"
 #include "geo/projection.hpp"
 #include "util/hash.hpp"
+#include "util/stop.hpp"
 
 #include <algorithm>
 #include <chrono>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
+#include <fstream>
 #include <stdexcept>
 
 namespace tourmap::store {
@@ -66,12 +71,24 @@ MetroFormat parse_metro_format(const std::string& name) {
 }
 
 std::string fingerprint_files(const std::vector<std::string>& files) {
+  // Streamed in chunks: a large extract is not held in memory just to be hashed.
   std::uint64_t h = util::kFnvOffset;
-  for (const auto& f : files) h = util::fnv1a64("\xff", util::fnv1a64(load::read_file(f), h));  // file separator
+  std::vector<char> buf(1 << 20);
+  for (const auto& f : files) {
+    std::ifstream in(f, std::ios::binary);
+    if (!in) throw load::LoadError(f, std::string("cannot open: ") + std::strerror(errno));
+    while (in) {
+      in.read(buf.data(), static_cast<std::streamsize>(buf.size()));
+      h = util::fnv1a64(std::string_view(buf.data(), static_cast<std::size_t>(in.gcount())), h);
+      util::check_stop();
+    }
+    if (in.bad()) throw load::LoadError(f, "read failed");
+    h = util::fnv1a64("\xff", h);  // file separator
+  }
   return util::hex64(h);
 }
 
-ImportResult import_metro(Db& db, const MetroImport& req) {
+ImportResult import_metro(Db& db, const MetroImport& req, const load::ImportLimits& limits) {
   require_id(req.city.id, "city");
   if (req.city.name.empty()) throw std::invalid_argument("city name is empty");
   std::size_t expected = req.format == MetroFormat::station_csvs ? 3 : 1;
@@ -83,16 +100,19 @@ ImportResult import_metro(Db& db, const MetroImport& req) {
   result.kind = "metro";
   result.target = req.city.id;
   auto fp = fingerprint_files(req.files);
-  if (!req.force && last_fingerprint(db, "metro", req.city.id) == fp) {
+  if (!req.force && last_fingerprint(db, "metro", req.city.id) == fp && city_version(db, req.city.id)) {
     result.skipped = true;
     result.version = city_version(db, req.city.id).value_or(0);
     return result;
   }
   model::MetroNetwork net;
+  load::MetroLoadStats stats;
   switch (req.format) {
-    case MetroFormat::loom: net = load::load_metro_loom(req.files[0]); break;
-    case MetroFormat::station_csvs: net = load::load_metro_station_csvs(req.files[0], req.files[1], req.files[2]); break;
-    case MetroFormat::line_csv: net = load::load_metro_line_csv(req.files[0]); break;
+    case MetroFormat::loom: net = load::load_metro_loom(req.files[0], limits, &stats); break;
+    case MetroFormat::station_csvs:
+      net = load::load_metro_station_csvs(req.files[0], req.files[1], req.files[2], limits, &stats);
+      break;
+    case MetroFormat::line_csv: net = load::load_metro_line_csv(req.files[0], limits, &stats); break;
   }
   result.rows = net.nodes.size() + net.edges.size() + net.lines.size();
   result.seconds = seconds_since(start);
@@ -102,10 +122,13 @@ ImportResult import_metro(Db& db, const MetroImport& req) {
   result.summary = std::to_string(net.station_count()) + " stations, " + std::to_string(net.nodes.size()) +
                    " nodes, " + std::to_string(net.edges.size()) + " edges, " + std::to_string(net.lines.size()) +
                    " lines";
+  if (stats.merged_connections > 0)
+    result.summary += " (" + std::to_string(stats.merged_connections) + " of " + std::to_string(stats.connections) +
+                      " connections merged into parallel edges)";
   return result;
 }
 
-ImportResult import_pois(Db& db, const PoiImport& req) {
+ImportResult import_pois(Db& db, const PoiImport& req, const load::ImportLimits& limits) {
   require_id(req.city_id, "city");
   auto start = Clock::now();
   ImportResult result;
@@ -119,7 +142,7 @@ ImportResult import_pois(Db& db, const PoiImport& req) {
     result.version = city_version(db, req.city_id).value_or(0);
     return result;
   }
-  auto pois = load::load_pois(req.file, {req.default_category});
+  auto pois = load::load_pois(req.file, {req.default_category}, limits);
   check_pois_near_city(*find_city(db, req.city_id), pois, load::file_name(req.file));
   result.rows = pois.size();
   result.version = save_city_pois(db, req.city_id, req.attribution, pois,
@@ -130,7 +153,7 @@ ImportResult import_pois(Db& db, const PoiImport& req) {
   return result;
 }
 
-ImportResult import_roads(Db& db, const RoadImport& req) {
+ImportResult import_roads(Db& db, const RoadImport& req, const load::ImportLimits& limits) {
   require_id(req.network.id, "road network");
   if (req.network.name.empty()) throw std::invalid_argument("road network name is empty");
   auto start = Clock::now();
@@ -138,13 +161,13 @@ ImportResult import_roads(Db& db, const RoadImport& req) {
   result.kind = "roads";
   result.target = req.network.id;
   auto fp = fingerprint_files({req.file});
-  if (!req.force && last_fingerprint(db, "roads", req.network.id) == fp) {
+  if (!req.force && last_fingerprint(db, "roads", req.network.id) == fp && road_network_version(db, req.network.id)) {
     result.skipped = true;
     result.version = road_network_version(db, req.network.id).value_or(0);
     return result;
   }
   load::OsmRoadStats stats;
-  auto net = load::load_osm_roads(req.file, &stats);
+  auto net = load::load_osm_roads(req.file, &stats, limits);
   result.rows = net.nodes.size() + net.ways.size() + net.edges.size();
   result.version = save_road_network(db, req.network, net,
                                      {"roads", req.network.id, load::file_name(req.file), fp, result.rows,

@@ -1,8 +1,13 @@
 #pragma once
 // Imports: load a source with the core loaders, then write it in one transaction. A file that
-// fails to load or to store changes nothing. Re-importing unchanged files is a no-op unless forced.
+// fails to load or to store changes nothing. Re-importing unchanged files is a no-op unless forced
+// (or the target was deleted since). The loaders enforce `limits` (load/import_limits.hpp):
+// beyond one they throw load::LimitExceeded, a load::LoadError; they poll util::check_stop(),
+// whose util::Stopped passes through unchanged.
 
 #include "repo.hpp"
+
+#include "load/import_limits.hpp"
 
 #include <functional>
 #include <string>
@@ -30,7 +35,7 @@ struct MetroImport {
   std::vector<std::string> files;  // loom/line-csv: 1 file; station-csvs: stations, lines, connections
   bool force = false;
 };
-ImportResult import_metro(Db& db, const MetroImport& request);
+ImportResult import_metro(Db& db, const MetroImport& request, const load::ImportLimits& limits = {});
 
 struct PoiImport {
   std::string city_id;
@@ -39,14 +44,14 @@ struct PoiImport {
   std::string attribution;
   bool force = false;
 };
-ImportResult import_pois(Db& db, const PoiImport& request);
+ImportResult import_pois(Db& db, const PoiImport& request, const load::ImportLimits& limits = {});
 
 struct RoadImport {
   RoadMeta network;
   std::string file;
   bool force = false;
 };
-ImportResult import_roads(Db& db, const RoadImport& request);
+ImportResult import_roads(Db& db, const RoadImport& request, const load::ImportLimits& limits = {});
 
 // FNV-1a 64 over the files' bytes, as hex: identifies a source version.
 std::string fingerprint_files(const std::vector<std::string>& files);

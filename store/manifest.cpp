@@ -68,7 +68,8 @@ Manifest parse_manifest(const std::string& json_text, const std::string& data_di
 }
 
 std::vector<ImportResult> run_manifest(Db& db, const Manifest& manifest, bool force,
-                                       const std::function<void(const ImportResult&)>& progress) {
+                                       const std::function<void(const ImportResult&)>& progress,
+                                       const load::ImportLimits& limits) {
   std::vector<ImportResult> results;
   auto done = [&](ImportResult r) {
     if (progress) progress(r);
@@ -76,15 +77,15 @@ std::vector<ImportResult> run_manifest(Db& db, const Manifest& manifest, bool fo
   };
   for (auto metro : manifest.metros) {
     metro.force = force;
-    done(import_metro(db, metro));
+    done(import_metro(db, metro, limits));
   }
   for (auto pois : manifest.pois) {
     pois.force = force;
-    done(import_pois(db, pois));
+    done(import_pois(db, pois, limits));
   }
   for (auto road : manifest.roads) {
     road.force = force;
-    done(import_roads(db, road));
+    done(import_roads(db, road, limits));
   }
   return results;
 }

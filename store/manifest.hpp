@@ -28,6 +28,7 @@ Manifest parse_manifest(const std::string& json_text, const std::string& data_di
 // Runs every import (each in its own transaction), calling `progress` after each. Throws on the
 // first failure; imports done before it stay.
 std::vector<ImportResult> run_manifest(Db& db, const Manifest& manifest, bool force,
-                                       const std::function<void(const ImportResult&)>& progress);
+                                       const std::function<void(const ImportResult&)>& progress,
+                                       const load::ImportLimits& limits = {});
 
 }  // namespace tourmap::store

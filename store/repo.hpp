@@ -24,7 +24,7 @@ struct ImportRecord {
   double seconds = 0.0;
 };
 
-// Fingerprint of the last import of (kind, target), if any.
+// Fingerprint of the last import of (kind, target) since the target was last deleted, if any.
 std::optional<std::string> last_fingerprint(Db& db, const std::string& kind, const std::string& target_id);
 
 // --- cities ---
@@ -42,6 +42,8 @@ std::vector<model::CityInfo> list_cities(Db& db);
 std::optional<model::CityInfo> find_city(Db& db, const std::string& id);
 std::optional<std::int64_t> city_version(Db& db, const std::string& id);
 std::optional<model::City> load_city(Db& db, const std::string& id);
+// Deletes the city with its metro network and POIs; false when there was none. Recorded in
+// the `deletions` table, so re-importing the same files afterwards imports them again.
 bool delete_city(Db& db, const std::string& id);
 
 // --- road networks ---
@@ -55,6 +57,7 @@ std::vector<model::RoadNetworkInfo> list_road_networks(Db& db);
 std::optional<model::RoadNetworkInfo> find_road_network(Db& db, const std::string& id);
 std::optional<std::int64_t> road_network_version(Db& db, const std::string& id);
 std::optional<model::RoadNetwork> load_road_network(Db& db, const std::string& id);
+// Deletes the road network; false when there was none. Recorded like delete_city.
 bool delete_road_network(Db& db, const std::string& id);
 
 // --- result cache ---

@@ -120,6 +120,7 @@ bool delete_road_network(Db& db, const std::string& id) {
   Transaction tx(db);
   db.prepare("DELETE FROM road_networks WHERE id = ?").bind(1, id).run();
   bool deleted = db.changes() > 0;
+  if (deleted) record_deletion(db, "roads", id);  // so the same file imports again
   tx.commit();
   return deleted;
 }

@@ -2,6 +2,7 @@
 
 #include "deform/system.hpp"
 #include "geo/polygon.hpp"
+#include "util/stop.hpp"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Orthogonal_k_neighbor_search.h>
@@ -74,13 +75,22 @@ std::vector<double> focus_edge_scales(const PlanarNetwork& net, const std::vecto
     polygons.push_back(std::make_unique<geo::PolygonSet>(std::vector<geo::Polygon>{poly}));
   }
   for (std::size_t i = 0; i < net.edges.size(); ++i) {
+    if ((i & 4095) == 0) util::check_stop();
     const auto& a = net.nodes[net.edges[i].first];
     const auto& b = net.nodes[net.edges[i].second];
     XY mid{(a.x + b.x) / 2, (a.y + b.y) / 2};
     for (std::size_t r = 0; r < regions.size(); ++r) {
-      bool inside = polygons[r] ? polygons[r]->contains({mid.x, mid.y})
-                                : dist(mid, regions[r].center) <= regions[r].radius;
-      if (inside) scales[i] = std::max(scales[i], regions[r].scale);
+      if (regions[r].scale <= scales[i]) continue;  // cannot raise this edge's scale
+      bool inside = false;
+      if (polygons[r]) {
+        // The bbox first: the exact test walks the polygon's edges.
+        const auto& box = polygons[r]->bbox();
+        inside = mid.x >= box.min_lon && mid.x <= box.max_lon && mid.y >= box.min_lat && mid.y <= box.max_lat &&
+                 polygons[r]->contains({mid.x, mid.y});
+      } else {
+        inside = dist(mid, regions[r].center) <= regions[r].radius;
+      }
+      if (inside) scales[i] = regions[r].scale;
     }
   }
   return scales;

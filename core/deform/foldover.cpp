@@ -1,5 +1,7 @@
 #include "deform/foldover.hpp"
 
+#include "util/stop.hpp"
+
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/box_intersection_d.h>
 
@@ -62,6 +64,7 @@ int relax_foldovers(const Prepared& p, std::vector<XY>& points, int max_iteratio
   const auto& g = *p.grid;
   int it = 0;
   for (; it < max_iterations; ++it) {
+    util::check_stop();
     auto folded = folded_quads(g, points);
     if (folded.empty()) break;
     std::set<std::uint32_t> moving;

@@ -1,5 +1,6 @@
 #include "deform/solver.hpp"
 #include "util/elapsed.hpp"
+#include "util/stop.hpp"
 
 #include <Eigen/SparseCholesky>
 
@@ -32,7 +33,39 @@ std::shared_ptr<const Prepared::Factor> Prepared::factor(double* factor_ms, bool
 namespace {
 using util::Clock;
 using util::ms_since;
+
+template <class T>
+std::size_t vector_bytes(const std::vector<T>& v) {
+  return v.capacity() * sizeof(T);
+}
+
+std::size_t sparse_bytes(const SparseMatrix& m) {
+  // values (double) + inner indices (int) per non-zero, outer index per column.
+  return static_cast<std::size_t>(m.nonZeros()) * (sizeof(double) + sizeof(int)) +
+         static_cast<std::size_t>(m.outerSize() + 1) * sizeof(int);
+}
+
 }  // namespace
+
+std::size_t Prepared::memory_bytes() const {
+  std::size_t bytes = sizeof(Prepared);
+  if (grid) {
+    const auto& g = *grid;
+    bytes += vector_bytes(g.vertices) + g.on_boundary.capacity() / 8 + vector_bytes(g.neighbors) +
+             vector_bytes(g.quads) + vector_bytes(g.tjunctions) + vector_bytes(g.cell_quad);
+  }
+  bytes += vector_bytes(embeddings) + vector_bytes(rest) + vector_bytes(column) + vector_bytes(guide_nodes);
+  bytes += sparse_bytes(system.A) + sparse_bytes(normal);
+  bytes += static_cast<std::size_t>(system.fixed_part.size() + system.base_target.size() + rest_unknowns.size()) *
+           sizeof(double);
+  std::lock_guard lock(*factor_mutex_);
+  if (factor_) {
+    // L's non-zeros, D, and the permutation (two index vectors).
+    const auto n = static_cast<std::size_t>(normal.rows());
+    bytes += sparse_bytes(factor_->ldlt.matrixL().nestedExpression()) + n * (sizeof(double) + 2 * sizeof(int));
+  }
+  return bytes;
+}
 
 Eigen::VectorXd conjugate_gradient(const SparseMatrix& N, const Eigen::VectorXd& rhs, const Eigen::VectorXd& x0,
                                    const SolveOptions& options, SolveReport& report) {
@@ -64,7 +97,10 @@ Eigen::VectorXd conjugate_gradient(const SparseMatrix& N, const Eigen::VectorXd&
     double rz_next = r.dot(z);
     d = z + (rz_next / rz) * d;
     rz = rz_next;
-    if ((report.iterations & 15) == 0 && ms_since(start) > options.time_limit_ms) break;
+    if ((report.iterations & 15) == 0) {
+      util::check_stop();  // the request's deadline, or its client left
+      if (ms_since(start) > options.time_limit_ms) break;
+    }
   }
   report.relative_residual = (rhs - N * x).norm() / (rhs_norm > 0 ? rhs_norm : 1.0);
   return x;

@@ -51,6 +51,8 @@ struct Prepared {
   // Cholesky factorization of `normal`, computed once on first use (thread-safe).
   struct Factor;
   std::shared_ptr<const Factor> factor(double* factor_ms, bool* cached);
+  // Approximate heap bytes held, the factorization included once computed (cache budgets).
+  std::size_t memory_bytes() const;
 
   Prepared();
   ~Prepared();

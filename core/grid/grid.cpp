@@ -1,5 +1,7 @@
 #include "grid/grid.hpp"
 
+#include "util/stop.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -77,6 +79,7 @@ class LeafLevels {
 void balance(LeafLevels& levels, const Lattice& lat) {
   bool changed = true;
   while (changed) {
+    util::check_stop();  // each pass visits every leaf
     changed = false;
     for (const auto& leaf : levels.leaves()) {
       if (leaf.level >= lat.depth) continue;

@@ -2,76 +2,109 @@
 
 #include "load/load_error.hpp"
 #include "load/strings.hpp"
+#include "util/stop.hpp"
 
 #include <cctype>
 #include <charconv>
 #include <cmath>
 
 namespace tourmap::load {
+namespace {
 
-std::optional<std::size_t> CsvTable::find_column(std::span<const std::string_view> names) const {
+[[noreturn]] void missing_column(const std::string& source, std::span<const std::string_view> names) {
+  throw LoadError(source + " line 1", "missing column '" + std::string(names.front()) + "'");
+}
+
+}  // namespace
+
+std::optional<std::size_t> find_csv_column(const std::vector<std::string>& header,
+                                           std::span<const std::string_view> names) {
   for (auto name : names)
     for (std::size_t c = 0; c < header.size(); ++c)
       if (iequals(trim(header[c]), name)) return c;
   return std::nullopt;
 }
 
-std::size_t CsvTable::column(std::span<const std::string_view> names) const {
+// --- CsvReader ---
+
+CsvReader::CsvReader(std::string_view text, std::string source, const ImportLimits& limits)
+    : text_(text),
+      source_(std::move(source)),
+      max_fields_(limits.max_csv_fields),
+      max_field_bytes_(limits.max_csv_field_bytes) {
+  if (text_.substr(0, 3) == "\xEF\xBB\xBF") text_.remove_prefix(3);
+  bool blank = false;
+  while (read_record(blank)) {
+    if (blank) continue;
+    header_ = std::move(row_);
+    row_.clear();
+    return;
+  }
+  throw LoadError(source_, "empty CSV file (no header)");
+}
+
+std::string CsvReader::where() const { return source_ + " line " + std::to_string(row_line_); }
+
+std::size_t CsvReader::column(std::span<const std::string_view> names) const {
   if (auto c = find_column(names)) return *c;
-  throw LoadError(source + " line 1", "missing column '" + std::string(names.front()) + "'");
+  missing_column(source_, names);
 }
 
-std::string CsvTable::where(std::size_t r) const {
-  return source + " line " + std::to_string(row_lines.at(r));
+bool CsvReader::next() {
+  bool blank = false;
+  while (read_record(blank)) {
+    if (blank) continue;
+    if (row_.size() != header_.size())
+      throw LoadError(where(), "expected " + std::to_string(header_.size()) + " fields, found " +
+                                   std::to_string(row_.size()));
+    return true;
+  }
+  row_.clear();
+  return false;
 }
 
-CsvTable parse_csv(std::string_view text, const std::string& source) {
-  CsvTable table;
-  table.source = source;
-  if (text.substr(0, 3) == "\xEF\xBB\xBF") text.remove_prefix(3);
-
-  std::vector<std::string> record;
+bool CsvReader::read_record(bool& blank) {
+  if ((records_++ & 1023) == 0) util::check_stop();  // the first record, then every 1,024
+  row_.clear();
+  blank = false;
+  if (pos_ >= text_.size()) return false;
+  row_line_ = line_;
   std::string field;
-  std::size_t line = 1, record_line = 1;
   bool in_quotes = false, field_started = false, any_in_record = false;
 
+  // "field 3 ('name')" once the header is known.
+  auto field_name = [&] {
+    auto name = "field " + std::to_string(row_.size() + 1);
+    if (row_.size() < header_.size()) name += " ('" + header_[row_.size()].substr(0, 64) + "')";
+    return name;
+  };
   auto end_field = [&] {
-    record.push_back(std::move(field));
+    if (row_.size() >= max_fields_)
+      check_limit(row_.size() + 1, max_fields_, "max_csv_fields", where(), "fields in a row");
+    row_.push_back(std::move(field));
     field.clear();
     field_started = false;
   };
-  auto end_record = [&] {
-    end_field();
-    bool blank = record.size() == 1 && record[0].empty() && !any_in_record;
-    if (!blank) {
-      if (table.header.empty()) {
-        table.header = std::move(record);
-      } else if (record.size() != table.header.size()) {
-        throw LoadError(source + " line " + std::to_string(record_line),
-                        "expected " + std::to_string(table.header.size()) + " fields, found " +
-                            std::to_string(record.size()));
-      } else {
-        table.rows.push_back(std::move(record));
-        table.row_lines.push_back(record_line);
-      }
-    }
-    record.clear();
-    any_in_record = false;
+  auto push = [&](char ch) {
+    if (field.size() >= max_field_bytes_)
+      check_limit(field.size() + 1, max_field_bytes_, "max_csv_field_bytes", where(), "bytes in " + field_name());
+    field.push_back(ch);
   };
 
-  for (std::size_t i = 0; i < text.size(); ++i) {
-    char ch = text[i];
+  const std::size_t n = text_.size();
+  for (; pos_ < n; ++pos_) {
+    const char ch = text_[pos_];
     if (in_quotes) {
       if (ch == '"') {
-        if (i + 1 < text.size() && text[i + 1] == '"') {
-          field.push_back('"');
-          ++i;
+        if (pos_ + 1 < n && text_[pos_ + 1] == '"') {
+          push('"');
+          ++pos_;
         } else {
           in_quotes = false;
         }
       } else {
-        if (ch == '\n') ++line;
-        field.push_back(ch);
+        if (ch == '\n') ++line_;
+        push(ch);
       }
       continue;
     }
@@ -82,7 +115,7 @@ CsvTable parse_csv(std::string_view text, const std::string& source) {
           field_started = true;
           any_in_record = true;
         } else {
-          field.push_back(ch);  // a stray quote inside an unquoted field is kept literally
+          push(ch);  // a stray quote inside an unquoted field is kept literally
         }
         break;
       case ',':
@@ -92,19 +125,43 @@ CsvTable parse_csv(std::string_view text, const std::string& source) {
       case '\r':
         break;
       case '\n':
-        end_record();
-        ++line;
-        record_line = line;
-        break;
+        end_field();
+        ++pos_;
+        ++line_;
+        blank = row_.size() == 1 && row_[0].empty() && !any_in_record;
+        return true;
       default:
-        field.push_back(ch);
+        push(ch);
         field_started = true;
         any_in_record = true;
     }
   }
-  if (in_quotes) throw LoadError(source + " line " + std::to_string(record_line), "unterminated quoted field");
-  if (any_in_record || !field.empty()) end_record();
-  if (table.header.empty()) throw LoadError(source, "empty CSV file (no header)");
+  if (in_quotes) throw LoadError(where(), "unterminated quoted field");
+  if (!any_in_record && field.empty()) return false;  // the text ended with a line break (or '\r')
+  end_field();
+  return true;
+}
+
+// --- CsvTable ---
+
+std::size_t CsvTable::column(std::span<const std::string_view> names) const {
+  if (auto c = find_column(names)) return *c;
+  missing_column(source, names);
+}
+
+std::string CsvTable::where(std::size_t r) const {
+  return source + " line " + std::to_string(row_lines.at(r));
+}
+
+CsvTable parse_csv(std::string_view text, const std::string& source, const ImportLimits& limits) {
+  CsvReader reader(text, source, limits);
+  CsvTable table;
+  table.source = source;
+  table.header = reader.header();
+  while (reader.next()) {
+    table.rows.push_back(std::move(reader.row()));
+    table.row_lines.push_back(reader.line());
+  }
   return table;
 }
 

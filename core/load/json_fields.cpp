@@ -2,6 +2,7 @@
 
 #include "load/load_error.hpp"
 #include "load/strings.hpp"
+#include "util/stop.hpp"
 
 #include <cctype>
 #include <charconv>
@@ -61,9 +62,22 @@ std::optional<double> json_number_any(const nlohmann::json& obj, std::span<const
   return std::nullopt;
 }
 
-nlohmann::json parse_json(std::string_view text, const std::string& source) {
+nlohmann::json parse_json(std::string_view text, const std::string& source, const ImportLimits& limits) {
+  std::size_t values = 0;
+  const std::size_t max_values = limits.max_json_values;
+  // Called for every value and at the start of every object and array (and for keys and ends,
+  // which are not counted). Throwing from it ends the parse; nlohmann passes it through.
+  const nlohmann::json::parser_callback_t count = [&](int, nlohmann::json::parse_event_t event, nlohmann::json&) {
+    using E = nlohmann::json::parse_event_t;
+    if (event == E::value || event == E::object_start || event == E::array_start) {
+      if (++values > max_values)
+        check_limit(values, max_values, "max_json_values", source, "JSON values");
+      if ((values & 0xffff) == 1) util::check_stop();  // the first value, then every 65,536
+    }
+    return true;
+  };
   try {
-    return nlohmann::json::parse(text);
+    return nlohmann::json::parse(text, count);
   } catch (const nlohmann::json::parse_error& e) {
     throw LoadError(source + " byte " + std::to_string(e.byte), "invalid JSON");
   } catch (const nlohmann::json::out_of_range&) {

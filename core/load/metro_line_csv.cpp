@@ -29,8 +29,9 @@ std::string colour_from_name(std::string name) {
 
 }  // namespace
 
-model::MetroNetwork parse_metro_line_csv(std::string_view csv_text, const std::string& source) {
-  auto table = parse_csv(csv_text, source);
+model::MetroNetwork parse_metro_line_csv(std::string_view csv_text, const std::string& source,
+                                         const ImportLimits& limits, MetroLoadStats* stats) {
+  CsvReader table(csv_text, source, limits);
   auto c_line = table.column({"line_id", "line"});
   auto c_seq = table.column({"seq_on_line", "seq", "sequence"});
   auto c_name = table.column({"name", "station", "station_name"});
@@ -41,13 +42,16 @@ model::MetroNetwork parse_metro_line_csv(std::string_view csv_text, const std::s
   auto c_color = table.find_column({"color", "colour", "line_color"});
   auto c_station = table.find_column({"gtfs_stop_id", "station_id", "stop_id"});
 
-  MetroBuilder builder;
-  // (line id) -> (seq -> node) to connect consecutive stations afterwards.
+  MetroBuilder builder(limits);
+  // (line id) -> (seq -> (node, line of the row)) to connect consecutive stations afterwards.
   std::map<std::string, std::map<double, std::pair<std::uint32_t, std::size_t>>> sequence;
+  std::size_t stops = 0;
 
-  for (std::size_t r = 0; r < table.rows.size(); ++r) {
-    const auto& row = table.rows[r];
-    auto where = table.where(r);
+  while (table.next()) {
+    const auto& row = table.row();
+    auto where = table.where();
+    // Every stop but a line's first becomes a connection: bound them before storing them.
+    check_limit(++stops, limits.max_metro_connections, "max_metro_connections", where, "line stops");
     // A transfer station appears once per line: identify it by stop id, else by name.
     std::string station_id = c_station && !is_null_field(row[*c_station]) ? row[*c_station] : row[c_name];
     if (station_id.empty()) throw LoadError(where, "station without name or id");
@@ -61,26 +65,27 @@ model::MetroNetwork parse_metro_line_csv(std::string_view csv_text, const std::s
     line.color = c_color && !is_null_field(row[*c_color]) ? row[*c_color] : "";
     if (line.color.empty() && c_label_en) line.color = colour_from_name(row[*c_label_en]);
     if (line.color.empty()) line.color = colour_from_name(line.label);
-    builder.line(line);
+    builder.line(line, where);
 
     double seq = parse_number(row[c_seq], where, "seq_on_line");
-    auto& stops = sequence[line.id];
-    if (!stops.emplace(seq, std::make_pair(builder.node(station_id, where), r)).second)
+    auto& line_stops = sequence[line.id];
+    if (!line_stops.emplace(seq, std::make_pair(builder.node(station_id, where), table.line())).second)
       throw LoadError(where, "line '" + line.id + "' has two stations at position " + row[c_seq]);
   }
 
-  for (const auto& [line_id, stops] : sequence) {
+  for (const auto& [line_id, line_stops] : sequence) {
     auto line = builder.line({line_id, "", ""});
-    for (auto it = stops.begin(); std::next(it) != stops.end(); ++it) {
+    for (auto it = line_stops.begin(); std::next(it) != line_stops.end(); ++it) {
       auto next = std::next(it);
-      builder.connect(it->second.first, next->second.first, line, table.where(next->second.second));
+      builder.connect(it->second.first, next->second.first, line, source + " line " + std::to_string(next->second.second));
     }
   }
+  if (stats) *stats = builder.stats();
   return std::move(builder).finish(source);
 }
 
-model::MetroNetwork load_metro_line_csv(const std::string& path) {
-  return parse_metro_line_csv(read_file(path), file_name(path));
+model::MetroNetwork load_metro_line_csv(const std::string& path, const ImportLimits& limits, MetroLoadStats* stats) {
+  return parse_metro_line_csv(read_file(path), file_name(path), limits, stats);
 }
 
 }  // namespace tourmap::load

@@ -6,6 +6,7 @@
 #include "load/load_error.hpp"
 #include "load/metro_builder.hpp"
 #include "load/metro_load.hpp"
+#include "util/stop.hpp"
 
 #include <algorithm>
 
@@ -27,18 +28,20 @@ double squared_deg_distance(geo::LonLat a, geo::LonLat b) {
 
 }  // namespace
 
-model::MetroNetwork parse_metro_loom(std::string_view json_text_in, const std::string& source) {
-  nlohmann::json doc = parse_json(json_text_in, source);
+model::MetroNetwork parse_metro_loom(std::string_view json_text_in, const std::string& source,
+                                     const ImportLimits& limits, MetroLoadStats* stats) {
+  nlohmann::json doc = parse_json(json_text_in, source, limits);
   if (!doc.is_object() || json_text(doc, "type").value_or("") != "FeatureCollection" ||
       !doc.contains("features") || !doc["features"].is_array())
     throw LoadError(source, "expected a GeoJSON FeatureCollection with a 'features' array");
   const auto& features = doc["features"];
 
-  MetroBuilder builder;
+  MetroBuilder builder(limits);
   auto where = [&](std::size_t i) { return source + " feature " + std::to_string(i); };
 
   // Nodes first: edges refer to them by id and may come before them in the file.
   for (std::size_t i = 0; i < features.size(); ++i) {
+    if ((i & 4095) == 0) util::check_stop();
     const auto& f = features[i];
     if (!f.is_object() || !f.contains("geometry") || !f["geometry"].is_object())
       throw LoadError(where(i), "feature without a geometry");
@@ -55,6 +58,7 @@ model::MetroNetwork parse_metro_loom(std::string_view json_text_in, const std::s
   }
 
   for (std::size_t i = 0; i < features.size(); ++i) {
+    if ((i & 4095) == 0) util::check_stop();
     const auto& f = features[i];
     const auto& geom = f["geometry"];
     auto type = json_text(geom, "type").value_or("");
@@ -80,7 +84,7 @@ model::MetroNetwork parse_metro_loom(std::string_view json_text_in, const std::s
         if (!line.color.empty() && line.color[0] == '#') line.color.erase(0, 1);
         if (line.id.empty()) throw LoadError(where(i), "line without id or label");
         if (line.label.empty()) line.label = line.id;
-        edge.lines.push_back(builder.line(line));
+        edge.lines.push_back(builder.line(line, where(i)));
       }
     }
     // LOOM does not promise that the polyline runs from `from` to `to`.
@@ -89,11 +93,12 @@ model::MetroNetwork parse_metro_loom(std::string_view json_text_in, const std::s
       std::reverse(edge.geometry.begin(), edge.geometry.end());
     builder.add_edge(std::move(edge), where(i));
   }
+  if (stats) *stats = builder.stats();
   return std::move(builder).finish(source);
 }
 
-model::MetroNetwork load_metro_loom(const std::string& path) {
-  return parse_metro_loom(read_file(path), file_name(path));
+model::MetroNetwork load_metro_loom(const std::string& path, const ImportLimits& limits, MetroLoadStats* stats) {
+  return parse_metro_loom(read_file(path), file_name(path), limits, stats);
 }
 
 }  // namespace tourmap::load

@@ -5,6 +5,7 @@
 #include "load/json_fields.hpp"
 #include "load/load_error.hpp"
 #include "load/text_repair.hpp"
+#include "util/stop.hpp"
 
 #include <unordered_set>
 
@@ -23,14 +24,34 @@ constexpr std::string_view kRank[] = {"rank"};
 constexpr std::string_view kPopularity[] = {"popularity", "score"};
 constexpr std::string_view kId[] = {"id", "objectid", "osm_id"};
 
+// Before a record is read: at most limits.max_pois records, and a stop check now and then.
+void next_poi(std::size_t count_so_far, const std::string& where, const ImportLimits& limits) {
+  check_limit(count_so_far + 1, limits.max_pois, "max_pois", where, "POIs");
+  if ((count_so_far & 1023) == 0) util::check_stop();
+}
+
+// Repairs double-encoded text, refusing it when longer than `limit` bytes (mojibake takes at
+// most 3 bytes per byte, so longer raw text is refused before it is looked at).
+std::string repaired_text(const std::string& raw, std::size_t limit, std::string_view limit_name,
+                          const std::string& where, std::string_view field) {
+  if (raw.size() / 3 > limit) check_text(raw, limit, limit_name, where, field);  // too long even once repaired
+  auto text = repair_mojibake(raw);
+  check_text(text, limit, limit_name, where, field);
+  return text;
+}
+
 // Checks the record and gives it a unique id.
 void finish_poi(model::Poi& poi, const std::string& where, std::unordered_set<std::string>& ids,
-                const PoiLoadOptions& options) {
-  poi.name = repair_mojibake(poi.name);
+                const PoiLoadOptions& options, const ImportLimits& limits) {
+  poi.name = repaired_text(poi.name, limits.max_name_bytes, "max_name_bytes", where, "name");
   if (poi.name.empty()) throw LoadError(where, "POI without a name");
   if (!geo::is_valid(poi.pos)) throw LoadError(where, "POI '" + poi.name + "' has invalid coordinates");
   if (poi.category.empty()) poi.category = options.default_category;
-  poi.category = repair_mojibake(poi.category);
+  poi.category = repaired_text(poi.category, limits.max_name_bytes, "max_name_bytes", where, "category");
+  check_text(poi.id, limits.max_id_bytes, "max_id_bytes", where, "id");
+  check_text(poi.image_url, limits.max_url_bytes, "max_url_bytes", where, "image URL");
+  check_text(poi.url, limits.max_url_bytes, "max_url_bytes", where, "URL");
+  check_text(poi.wikipedia, limits.max_url_bytes, "max_url_bytes", where, "wikipedia");
   if (!ids.insert(poi.id).second) throw LoadError(where, "duplicate POI id '" + poi.id + "'");
 }
 
@@ -46,11 +67,12 @@ void fill_from_object(model::Poi& poi, const nlohmann::json& obj) {
 }
 
 std::vector<model::Poi> parse_object_array(const nlohmann::json& arr, const std::string& source,
-                                           const PoiLoadOptions& options) {
+                                           const PoiLoadOptions& options, const ImportLimits& limits) {
   std::vector<model::Poi> pois;
   std::unordered_set<std::string> ids;
   for (std::size_t i = 0; i < arr.size(); ++i) {
     auto where = source + " record " + std::to_string(i);
+    next_poi(pois.size(), where, limits);
     const auto& obj = arr[i];
     if (!obj.is_object()) throw LoadError(where, "expected an object");
     model::Poi poi;
@@ -59,7 +81,7 @@ std::vector<model::Poi> parse_object_array(const nlohmann::json& arr, const std:
     if (!lon || !lat) throw LoadError(where, "missing lon/lat");
     poi.pos = {*lon, *lat};
     poi.id = json_text_any(obj, kId).value_or(std::to_string(i));
-    finish_poi(poi, where, ids, options);
+    finish_poi(poi, where, ids, options, limits);
     pois.push_back(std::move(poi));
   }
   return pois;
@@ -68,8 +90,8 @@ std::vector<model::Poi> parse_object_array(const nlohmann::json& arr, const std:
 }  // namespace
 
 std::vector<model::Poi> parse_pois_geojson(std::string_view text, const std::string& source,
-                                           const PoiLoadOptions& options) {
-  auto doc = parse_json(text, source);
+                                           const PoiLoadOptions& options, const ImportLimits& limits) {
+  auto doc = parse_json(text, source, limits);
   if (!doc.is_object() || json_text(doc, "type").value_or("") != "FeatureCollection" ||
       !doc.contains("features") || !doc["features"].is_array())
     throw LoadError(source, "expected a GeoJSON FeatureCollection with a 'features' array");
@@ -78,6 +100,7 @@ std::vector<model::Poi> parse_pois_geojson(std::string_view text, const std::str
   const auto& features = doc["features"];
   for (std::size_t i = 0; i < features.size(); ++i) {
     auto where = source + " feature " + std::to_string(i);
+    next_poi(pois.size(), where, limits);
     const auto& f = features[i];
     if (!f.is_object() || !f.contains("geometry") || !f["geometry"].is_object())
       throw LoadError(where, "feature without a geometry");
@@ -91,15 +114,15 @@ std::vector<model::Poi> parse_pois_geojson(std::string_view text, const std::str
     fill_from_object(poi, props);
     poi.pos = {c[0].get<double>(), c[1].get<double>()};
     poi.id = json_text(f, "id").value_or(json_text_any(props, kId).value_or(std::to_string(i)));
-    finish_poi(poi, where, ids, options);
+    finish_poi(poi, where, ids, options, limits);
     pois.push_back(std::move(poi));
   }
   return pois;
 }
 
 std::vector<model::Poi> parse_pois_csv(std::string_view text, const std::string& source,
-                                       const PoiLoadOptions& options) {
-  auto table = parse_csv(text, source);
+                                       const PoiLoadOptions& options, const ImportLimits& limits) {
+  CsvReader table(text, source, limits);
   auto c_name = table.column(kName);
   auto c_lon = table.column(kLon);
   auto c_lat = table.column(kLat);
@@ -116,9 +139,10 @@ std::vector<model::Poi> parse_pois_csv(std::string_view text, const std::string&
   };
   std::vector<model::Poi> pois;
   std::unordered_set<std::string> ids;
-  for (std::size_t r = 0; r < table.rows.size(); ++r) {
-    const auto& row = table.rows[r];
-    auto where = table.where(r);
+  while (table.next()) {
+    const auto& row = table.row();
+    auto where = table.where();
+    next_poi(pois.size(), where, limits);
     model::Poi poi;
     poi.name = row[c_name];
     poi.pos = {parse_number(row[c_lon], where, "longitude"), parse_number(row[c_lat], where, "latitude")};
@@ -131,35 +155,35 @@ std::vector<model::Poi> parse_pois_csv(std::string_view text, const std::string&
     if (c_rank && !is_null_field(row[*c_rank])) poi.rank = parse_number(row[*c_rank], where, "rank");
     if (c_pop && !is_null_field(row[*c_pop])) poi.popularity = parse_number(row[*c_pop], where, "popularity");
     // Without an id column the data line number is the stable id.
-    poi.id = c_id && !is_null_field(row[*c_id]) ? row[*c_id] : std::string("L").append(std::to_string(table.row_lines[r]));
-    finish_poi(poi, where, ids, options);
+    poi.id = c_id && !is_null_field(row[*c_id]) ? row[*c_id] : std::string("L").append(std::to_string(table.line()));
+    finish_poi(poi, where, ids, options, limits);
     pois.push_back(std::move(poi));
   }
   return pois;
 }
 
 std::vector<model::Poi> parse_pois_js_array(std::string_view text, const std::string& source,
-                                            const PoiLoadOptions& options) {
+                                            const PoiLoadOptions& options, const ImportLimits& limits) {
   // Strip a `var name =` prefix and a trailing `;` so the rest is a JSON array.
   auto open = text.find('[');
   auto close = text.rfind(']');
   if (open == std::string_view::npos || close == std::string_view::npos || close < open)
     throw LoadError(source, "expected a JSON array of POI objects");
-  auto doc = parse_json(text.substr(open, close - open + 1), source);
-  return parse_object_array(doc, source, options);
+  auto doc = parse_json(text.substr(open, close - open + 1), source, limits);
+  return parse_object_array(doc, source, options, limits);
 }
 
-std::vector<model::Poi> load_pois(const std::string& path, const PoiLoadOptions& options) {
+std::vector<model::Poi> load_pois(const std::string& path, const PoiLoadOptions& options, const ImportLimits& limits) {
   auto text = read_file(path);
   auto name = file_name(path);
   auto ends_with = [&](std::string_view suffix) {
     return name.size() >= suffix.size() && name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0;
   };
-  if (ends_with(".csv")) return parse_pois_csv(text, name, options);
+  if (ends_with(".csv")) return parse_pois_csv(text, name, options, limits);
   auto first = text.find_first_not_of(" \t\r\n\xEF\xBB\xBF");
-  if (first != std::string::npos && text[first] == '{') return parse_pois_geojson(text, name, options);
+  if (first != std::string::npos && text[first] == '{') return parse_pois_geojson(text, name, options, limits);
   if (first != std::string::npos && (text[first] == '[' || ends_with(".js")))
-    return parse_pois_js_array(text, name, options);
+    return parse_pois_js_array(text, name, options, limits);
   throw LoadError(name, "unknown POI format (expected GeoJSON, CSV or a JSON/JS array)");
 }
 

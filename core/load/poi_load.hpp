@@ -5,8 +5,12 @@
 //   category: category, type, Wikipedia_Type, tourism;  image: image, image_url, thumbnail;
 //   url: url, website, weitere_inf;  wikipedia: wikipedia, wikipedia url, wikidata;
 //   rank: rank;  popularity: popularity, score;  id: feature id, id, objectid.
-// A record without a name or a valid position is an error naming the record.
+// A record without a name or a valid position is an error naming the record. Beyond
+// limits.max_pois records, or with a text field longer than its limit (max_name_bytes for the
+// name and category, max_id_bytes for the id, max_url_bytes for the URLs), the load stops with
+// LimitExceeded naming the record and the field: nothing is truncated. Polls util::check_stop().
 
+#include "load/import_limits.hpp"
 #include "model/poi.hpp"
 
 #include <string>
@@ -20,14 +24,14 @@ struct PoiLoadOptions {
 };
 
 std::vector<model::Poi> parse_pois_geojson(std::string_view text, const std::string& source,
-                                           const PoiLoadOptions& options = {});
+                                           const PoiLoadOptions& options = {}, const ImportLimits& limits = {});
 std::vector<model::Poi> parse_pois_csv(std::string_view text, const std::string& source,
-                                       const PoiLoadOptions& options = {});
+                                       const PoiLoadOptions& options = {}, const ImportLimits& limits = {});
 // A JSON array of objects, optionally wrapped as a JS statement `var name = [...];`.
 std::vector<model::Poi> parse_pois_js_array(std::string_view text, const std::string& source,
-                                            const PoiLoadOptions& options = {});
+                                            const PoiLoadOptions& options = {}, const ImportLimits& limits = {});
 
 // Picks the parser from the content (and the file extension for CSV).
-std::vector<model::Poi> load_pois(const std::string& path, const PoiLoadOptions& options = {});
+std::vector<model::Poi> load_pois(const std::string& path, const PoiLoadOptions& options = {}, const ImportLimits& limits = {});
 
 }  // namespace tourmap::load

@@ -1,6 +1,7 @@
 #include "metro/octilinear_grid.hpp"
 
 #include "metro/layout_quality.hpp"
+#include "util/stop.hpp"
 
 #include <algorithm>
 #include <chrono>
@@ -848,6 +849,7 @@ Attempt attempt_routing(const LayoutGraph& g, const std::vector<XY>& start, cons
     int ci = work.front();
     work.pop_front();
     if (!grid_path[ci].empty()) continue;
+    util::check_stop();  // the request's own deadline or client, beyond the layout's time limit
     if (Clock::now() > deadline) {
       result.timed_out = true;
       break;

@@ -2,6 +2,7 @@
 
 #include "poi/assignment.hpp"
 #include "poi/spatial.hpp"
+#include "util/stop.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -135,6 +136,7 @@ ClusterTree build_cluster_tree(const std::vector<ClusterPoint>& points, const Cl
   std::vector<geo::XY> centers;
   // Step (c): one round per level until one root remains; every round merges at least one pair.
   for (std::uint32_t level = 1; current.size() > 1; ++level) {
+    util::check_stop();  // a round over a million clusters takes a while
     next.clear();
     pending.clear();
     if (current.size() > options.dense_limit) {

@@ -91,7 +91,8 @@ void CrowdRenderer::Impl::validate(const FrameRequest& request) const {
   for (std::size_t i = 0; i < request.instances.size(); ++i) {
     const InstanceState& inst = request.instances[i];
     const std::string which = "CrowdRenderer: instance " + std::to_string(i) + ": ";
-    if (inst.model < 0 || static_cast<std::size_t>(inst.model) >= models.size())
+    if (inst.model < 0 || static_cast<std::size_t>(inst.model) >= models.size() ||
+        !models[static_cast<std::size_t>(inst.model)])
       throw std::invalid_argument(which + "no model " + std::to_string(inst.model));
     if (!inst.world.matrix().allFinite() || !std::isfinite(inst.tint))
       throw std::invalid_argument(which + "non-finite world transform or tint");
@@ -167,7 +168,8 @@ void CrowdRenderer::Impl::draw_items(const FrameRequest& request, std::span<cons
   commands.clear();
   std::vector<std::pair<std::size_t, std::size_t>> model_commands(models.size());  // [begin, end)
   for (std::size_t m = 0; m < models.size(); ++m) {
-    model_commands[m].first = commands.size();
+    model_commands[m].first = model_commands[m].second = commands.size();
+    if (!models[m]) continue;  // removed
     const auto& clusters = models[m]->hierarchy().clusters;
     for (int id : models[m]->clusters_in_index_order()) {
       const auto c = static_cast<std::size_t>(id);
@@ -301,17 +303,34 @@ CrowdRenderer::~CrowdRenderer() {
 
 int CrowdRenderer::add_model(const crowd::SkinnedModel& model, const crowd::ClusterHierarchy& hierarchy) {
   impl_->context.make_current();
-  impl_->models.push_back(std::make_unique<GpuModel>(model, hierarchy));
-  if (impl_->model_first_key.empty()) impl_->model_first_key.push_back(0);
-  impl_->model_first_key.push_back(impl_->model_first_key.back() + hierarchy.clusters.size());
+  auto gpu = std::make_unique<GpuModel>(model, hierarchy);
   impl_->coherence.reset();
+  // A removed model's slot is re-used when its range of cluster keys is big enough, so that
+  // models added and removed over and over (scene variants) do not grow the key space.
+  auto& keys = impl_->model_first_key;
+  for (std::size_t m = 0; m < impl_->models.size(); ++m)
+    if (!impl_->models[m] && keys[m + 1] - keys[m] >= hierarchy.clusters.size()) {
+      impl_->models[m] = std::move(gpu);
+      return static_cast<int>(m);
+    }
+  impl_->models.push_back(std::move(gpu));
+  if (keys.empty()) keys.push_back(0);
+  keys.push_back(keys.back() + hierarchy.clusters.size());
   return static_cast<int>(impl_->models.size()) - 1;
+}
+
+void CrowdRenderer::remove_model(int model) {
+  if (model < 0 || model >= model_count() || !impl_->models[static_cast<std::size_t>(model)])
+    throw std::invalid_argument("CrowdRenderer: no model " + std::to_string(model));
+  impl_->context.make_current();
+  impl_->models[static_cast<std::size_t>(model)].reset();  // frees its buffers and texture
+  impl_->coherence.reset();
 }
 
 int CrowdRenderer::model_count() const { return static_cast<int>(impl_->models.size()); }
 
 int CrowdRenderer::frame_count(int model, int animation) const {
-  if (model < 0 || model >= model_count()) throw std::invalid_argument("CrowdRenderer: no model " + std::to_string(model));
+  if (model < 0 || model >= model_count() || !impl_->models[static_cast<std::size_t>(model)]) throw std::invalid_argument("CrowdRenderer: no model " + std::to_string(model));
   return impl_->models[static_cast<std::size_t>(model)]->frame_count(animation);
 }
 

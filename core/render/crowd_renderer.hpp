@@ -68,7 +68,10 @@ class CrowdRenderer {
   // Uploads a model and its hierarchy (all clusters index the model's original vertices);
   // returns its id for InstanceState::model. Throws std::invalid_argument on inconsistent input.
   int add_model(const crowd::SkinnedModel& model, const crowd::ClusterHierarchy& hierarchy);
-  int model_count() const;
+  // Frees a model's GPU buffers; its id may be handed out again by add_model. Instances must
+  // not name it any more (render() refuses them).
+  void remove_model(int model);
+  int model_count() const;  // ids handed out so far (removed ones included)
   // Frames of one animation of a model (for callers that advance time).
   int frame_count(int model, int animation) const;
 

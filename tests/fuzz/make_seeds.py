@@ -462,6 +462,31 @@ def main():
     put("handlers", "static.txt", req("GET", "/assets/app-1234.js"))
     put("handlers", "static_traversal.txt", req("GET", "/assets/%2e%2e/..%2fsecret.txt"))
     put("handlers", "method.txt", req("DELETE", "/api/v1/cities"))
+    # --- raw HTTP bytes into a connection (http_raw): framing, chunking, trailers, pipelining
+    crlf = "\r\n"
+    put("http_raw", "get.txt", "GET /healthz HTTP/1.1" + crlf + "Host: x" + crlf + crlf)
+    put("http_raw", "pipelined.txt", ("GET /api/v1/cities HTTP/1.1" + crlf + "Host: x" + crlf + crlf) +
+        ("HEAD /api/v1/roads HTTP/1.1" + crlf + "Host: x" + crlf + "Accept-Encoding: gzip" + crlf + crlf) +
+        ("GET /metrics HTTP/1.0" + crlf + crlf))
+    body = compact({"within": {"type": "Polygon", "coordinates": [[[16.3, 48.1], [16.4, 48.1], [16.4, 48.3], [16.3, 48.1]]]}})
+    put("http_raw", "post_length.txt", "POST /api/v1/cities/fuzzville/pois/query HTTP/1.1" + crlf + "Host: x" + crlf +
+        "Content-Type: application/json" + crlf + "Content-Length: " + str(len(body)) + crlf + crlf + body)
+    put("http_raw", "post_chunked_trailer.txt", "POST /api/v1/cities/fuzzville/pois/query HTTP/1.1" + crlf +
+        "Host: x" + crlf + "Content-Type: application/json" + crlf + "Transfer-Encoding: chunked" + crlf + crlf +
+        "%x" % 10 + ";ext=1" + crlf + body[:10] + crlf + "%x" % (len(body) - 10) + crlf + body[10:] + crlf +
+        "0" + crlf + "X-Checksum: 1" + crlf + "Origin: https://example.org" + crlf + crlf)
+    put("http_raw", "expect_continue.txt", "PUT /api/v1/roads/x HTTP/1.1" + crlf + "Host: x" + crlf +
+        "Expect: 100-continue" + crlf + "Content-Length: 4" + crlf + crlf + "<osm")
+    put("http_raw", "deform.txt", "POST /api/v1/deform/focus HTTP/1.1" + crlf + "Host: x" + crlf +
+        "Content-Type: application/json" + crlf + "Connection: close" + crlf + crlf + compact({
+            "roads": "grid", "grid": {"kind": "adaptive", "base": 4, "depth": 2},
+            "regions": [{"center": [16.362, 48.202], "radius_m": 200, "scale": 2}], "output": {"roads": "none"}}))
+    put("http_raw", "websocket.txt", "GET /api/v1/events HTTP/1.1" + crlf + "Host: x" + crlf + "Upgrade: websocket" +
+        crlf + "Connection: Upgrade" + crlf + "Sec-WebSocket-Key: dGhlIHNhbXBsZSBub25jZQ==" + crlf +
+        "Sec-WebSocket-Version: 13" + crlf + crlf)
+    put("http_raw", "unknown_method.txt", "FROBNICATE /api/v1/cities HTTP/1.1" + crlf + "Host: x" + crlf + crlf)
+    put("http_raw", "bad_chunk.txt", "POST /api/v1/deform/focus HTTP/1.1" + crlf + "Transfer-Encoding: chunked" +
+        crlf + crlf + "zz" + crlf + "abc" + crlf)
     # --- crowd models and caches
     for name, kw in [("skinned", {}), ("static", {"skinned": False}), ("rest_pose", {"animated": False}),
                      ("byte_joints_no_normals", {"byte_joints": True, "with_normals": False})]:

@@ -68,7 +68,7 @@ TEST_F(BadInput, MalformedJsonAndGeoJsonBodies) {
   expect_error(post_json(target, R"({"limit": "5"})"), 400, "limit");
   expect_error(post_json(target, R"({"limit": 2.5})"), 400, "limit");
   expect_error(post_json(target, R"({"bbox": [1, 2, 3]})"), 400, "bbox");
-  expect_error(post_json(target, R"({"categories": [1]})"), 400, "categories");
+  expect_error(post_json(target, R"({"categories": [1]})"), 400, "categories[0]");
   expect_error(post_json(target, R"({"within": {"type": "Point", "coordinates": [16, 48]}})"), 400, "within.type");
   expect_error(post_json(target, R"({"within": {"type": "Polygon", "coordinates": [[[0,0],[1,1],[1,0],[0,1],[0,0]]]}})"),
                400, "within.coordinates[0]");  // self-intersecting

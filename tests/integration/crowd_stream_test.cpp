@@ -4,6 +4,8 @@
 
 #include "live_server.hpp"
 
+#include "server/crowd_stream.hpp"
+
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -207,6 +209,30 @@ TEST(CrowdApi, AClientThatStopsReadingDoesNotHoldUpOthers) {
     ASSERT_LT(frames_waiting, 50) << "the slow client gets a backlog";
   }
   EXPECT_EQ(frames_waiting, 1);
+}
+
+// Each (scene, count) a client asks for is a prepared variant the render thread keeps; a client
+// cycling through counts used to fill the table for good (every later client got "unavailable"
+// until a restart). Now the least recently used variants nobody shows are evicted.
+TEST(CrowdApi, SceneVariantsAreEvictedNotExhausted) {
+  LiveServer s(crowd_flags());
+  {
+    WsClient greedy(s.port(), "/api/v1/crowd/stream");
+    greedy.send(kSmallOffice);
+    next_frame(greedy);
+    for (int i = 0; i < 40; ++i) {
+      greedy.send(R"({"type":"view","count":)" + std::to_string(2 + i) + "}");
+      next_frame(greedy);  // one prepared variant per count
+    }
+  }
+  WsClient later(s.port(), "/api/v1/crowd/stream");
+  later.send(R"({"type":"view","scene":"office","count":77,"width":96,"height":64,"animate":false})");
+  const Frame f = next_frame(later);
+  EXPECT_EQ(f.stats["characters"], 77);
+  const auto metrics = s.get("/metrics").body;
+  const auto at = metrics.find("\ntourmap_crowd_variants_evicted ");
+  ASSERT_NE(at, std::string::npos);
+  EXPECT_GE(std::atof(metrics.c_str() + at + 32), 41.0 - server::CrowdStreamer::kMaxSceneVariants);  // 41 asked for
 }
 
 TEST(CrowdApi, MissingModelFilesGiveAClearErrorAndTheServerGoesOn) {

@@ -9,7 +9,11 @@
 
 #include <nlohmann/json.hpp>
 
+#include <fstream>
+#include <map>
 #include <memory>
+#include <regex>
+#include <sstream>
 #include <string>
 
 namespace tourmap::test {
@@ -58,5 +62,26 @@ class LiveServer {
 
 // The error object of a 4xx/5xx JSON body.
 inline nlohmann::json error_of(const HttpResult& r) { return nlohmann::json::parse(r.body).at("error"); }
+
+inline std::string file_bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream out;
+  out << in.rdbuf();
+  return out.str();
+}
+
+// `tourmap keys create` on the server's database: the key is the one line that looks like one.
+inline std::string create_key(const LiveServer& live, const std::string& name = "tests") {
+  auto r = run_command({kTourmapBin, "keys", "create", "--name", name, "--db", live.db()});
+  if (r.exit_code != 0) throw std::runtime_error("keys create failed: " + r.output);
+  std::smatch m;
+  if (!std::regex_search(r.output, m, std::regex("tm_[0-9a-f]{16}_[0-9a-f]{64}")))
+    throw std::runtime_error("no key in: " + r.output);
+  return m.str();
+}
+
+inline std::map<std::string, std::string> bearer(const std::string& key) {
+  return {{"Authorization", "Bearer " + key}};
+}
 
 }  // namespace tourmap::test

@@ -6,32 +6,10 @@
 
 #include <gtest/gtest.h>
 
-#include <fstream>
-#include <regex>
-#include <sstream>
 #include <thread>
 
 namespace tourmap::test {
 namespace {
-
-std::string file_bytes(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream out;
-  out << in.rdbuf();
-  return out.str();
-}
-
-// `tourmap keys create`: the key is the one line of the output that looks like one.
-std::string create_key(const LiveServer& live, const std::string& name = "tests") {
-  auto r = run_command({kTourmapBin, "keys", "create", "--name", name, "--db", live.db()});
-  if (r.exit_code != 0) throw std::runtime_error("keys create failed: " + r.output);
-  std::smatch m;
-  if (!std::regex_search(r.output, m, std::regex("tm_[0-9a-f]{16}_[0-9a-f]{64}")))
-    throw std::runtime_error("no key in: " + r.output);
-  return m.str();
-}
-
-std::map<std::string, std::string> bearer(const std::string& key) { return {{"Authorization", "Bearer " + key}}; }
 
 TEST(Writes, NeedAValidApiKey) {
   LiveServer live;

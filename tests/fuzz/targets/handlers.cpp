@@ -5,10 +5,7 @@
 // no route takes go to the static files (path traversal must not leave the web root). Write
 // routes (Access::api_key) are refused as for a client without a key.
 //
-// Behind the handlers: a temporary SQLite store with a 5-station city ("fuzzville", POIs
-// included) and a 3 x 3 street grid ("grid"), imported at start-up through the importers. The
-// deformation limits are lowered (coarser grids, shorter time limits) so that one request
-// stays well under the run's -timeout; the code paths are the production ones.
+// Behind the handlers: support/server_world.hpp.
 //
 // Input: "METHOD TARGET\n", then header lines ("Content-Type: ...", "Accept-Encoding: ...",
 // "If-None-Match: ..."), an empty line, and the body.
@@ -16,16 +13,10 @@
 // server) is a finding: it escapes the harness.
 
 #include "fuzz_common.hpp"
-#include "support/sample_inputs.hpp"
+#include "support/server_world.hpp"
 
-#include "api/routes.hpp"
-#include "server/crowd_stream.hpp"
-#include "server/events.hpp"
 #include "server/respond.hpp"
-#include "server/routes_table.hpp"
 #include "server/url.hpp"
-#include "store/importer.hpp"
-#include "store/migrate.hpp"
 
 #include <boost/beast/core/string.hpp>
 
@@ -35,65 +26,10 @@ namespace {
 
 using namespace tourmap;
 
-constexpr const char* kSecret = "tourmap-fuzz-secret-outside-the-web-root";
+using fuzz::kSecret;
 
-struct World {
-  fuzz::ScratchDir& dir = fuzz::ScratchDir::get();
-  std::string web_root = [this] {
-    std::filesystem::create_directories(dir.path() / "web" / "assets");
-    dir.write("web/index.html", "<!doctype html><title>tourmap</title>");
-    dir.write("web/assets/app-1234.js", "console.log('tourmap')");
-    dir.write("secret.txt", kSecret);
-    return (dir.path() / "web").string();
-  }();
-  store::DbPool pool{(dir.path() / "fuzz.db").string()};
-  api::Catalog catalog{pool};
-  api::DeformService deform{catalog, small_deform_limits()};
-  api::MetroService metro{catalog, {}, api::MetroLimits{128, 50}};
-  api::AppContext ctx{pool, catalog, deform, metro, "fuzz"};
-  server::Config config = make_config(web_root);
-  server::ServerState state{config};
-  boost::asio::io_context ioc;
-  server::EventHub events{ioc, pool, std::chrono::milliseconds(1000)};
-  api::CrowdAssets assets{(dir.path() / "models").string(), nullptr};
-  server::CrowdStreamer crowd{assets, ctx.crowd_limits};  // never started: no render thread
-
-  World() {
-    {
-      auto db = pool.acquire();
-      store::migrate(*db);
-      auto loom = dir.write("metro.json", fuzz::kLoomMetro);
-      auto pois = dir.write("pois.csv", fuzz::kPoiCsv);
-      auto osm = dir.write("grid.osm", fuzz::kOsmGrid);
-      store::import_metro(*db, {{"fuzzville", "Fuzzville", "hand-written"}, store::MetroFormat::loom, {loom}, false});
-      store::import_pois(*db, {"fuzzville", pois, "sight", "hand-written", false});
-      store::import_roads(*db, {{"grid", "Grid", "hand-written"}, osm, false});
-    }
-    server::register_routes(state, ctx, events, crowd);
-  }
-
-  static api::DeformLimits small_deform_limits() {
-    api::DeformLimits l;
-    l.max_base = 16;
-    l.max_depth = 4;
-    l.max_uniform = 40;
-    l.max_unknowns = 20000;
-    l.max_direct_grid_unknowns = 6000;
-    l.max_lattice_cells = 1u << 16;
-    l.max_time_limit_ms = 2000;
-    return l;
-  }
-  static server::Config make_config(const std::string& web_root) {
-    server::Config c;
-    c.access_log = "off";
-    c.compute_threads = 1;
-    c.web_root = web_root;
-    return c;
-  }
-};
-
-World& world() {
-  static World w;
+fuzz::ServerWorld& world() {
+  static fuzz::ServerWorld w;
   return w;
 }
 
@@ -102,7 +38,7 @@ api::Response run(const api::Route& route, api::Request& req) {
     return route.handler(req);
   } catch (const api::ApiError& e) {
     FUZZ_CHECK(e.status >= 400 && e.status <= 599);
-    return api::error_response(e.status, e.code, e.what(), e.field);
+    return api::error_response(e);
   }
 }
 
@@ -114,7 +50,7 @@ extern "C" int LLVMFuzzerInitialize(int*, char***) {
 }
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  World& w = world();
+  fuzz::ServerWorld& w = world();
   std::string_view in = fuzz::as_view(data, size);
   auto eol = in.find('\n');
   std::string_view line = in.substr(0, eol);

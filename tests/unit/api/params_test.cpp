@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 namespace tourmap::api {
 namespace {
 
@@ -73,6 +75,65 @@ TEST(Params, JsonNumberTooLargeForADoubleIs400) {
     req.body = body;
     expect_field([&] { parse_json_body(req); }, "body");
   }
+}
+
+// The one format of every refusal: the message starts with the field it names.
+TEST(Params, RefusalsNameTheirFieldFirst) {
+  const ApiError b = bad("grid.base", "must be between 1 and 64");
+  EXPECT_EQ(b.status, 400);
+  EXPECT_EQ(b.code, "invalid_parameter");
+  EXPECT_EQ(b.field, "grid.base");
+  EXPECT_EQ(b.message, "grid.base: must be between 1 and 64");
+  const ApiError t = too_large("regions", "at most 32 items");
+  EXPECT_EQ(t.status, 413);
+  EXPECT_EQ(t.code, "too_large");
+  EXPECT_EQ(t.message, "regions: at most 32 items");
+  EXPECT_EQ(not_found("id", "city", "atlantis").message, "id: no city 'atlantis'");
+  EXPECT_EQ(bad("body", "x", "invalid_json").code, "invalid_json");
+}
+
+// A client's text inside a message: bounded, and a NUL cannot cut the message short.
+TEST(Params, ShownTextIsBoundedAndPrintable) {
+  EXPECT_EQ(shown("vienna"), "vienna");
+  EXPECT_EQ(shown(std::string("a\0b\n", 4)), "a\\x00b\\x0a");
+  EXPECT_EQ(shown(std::string(100, 'x')), std::string(64, 'x') + "...");
+  const ApiError e = bad("scene", "unknown scene '" + shown(std::string("of\0fice", 7)) + "'");
+  EXPECT_EQ(e.message, "scene: unknown scene 'of\\x00fice'");  // whole, where what() would stop at the NUL
+}
+
+TEST(Params, TypedJsonReaders) {
+  using nlohmann::json;
+  EXPECT_EQ(json_number(json(2.5), "x", 0, 10), 2.5);
+  expect_field([] { json_number(json("2"), "x", 0, 10); }, "x");
+  expect_field([] { json_number(json(11), "x", 0, 10); }, "x");
+  expect_field([] { json_number(json(std::nan("")), "x", 0, 10); }, "x");
+  EXPECT_EQ(json_integer(json(7), "n", 1, 10), 7);
+  expect_field([] { json_integer(json(7.5), "n", 1, 10); }, "n");
+  expect_field([] { json_integer(json(18446744073709551615ull), "n", 1, 10); }, "n");  // not -1
+  EXPECT_TRUE(json_bool(json(true), "b"));
+  expect_field([] { json_bool(json(1), "b"); }, "b");
+  EXPECT_EQ(json_choice(json("cg"), "solver", {"cholesky", "cg"}), "cg");
+  expect_field([] { json_choice(json("lu"), "solver", {"cholesky", "cg"}); }, "solver");
+  EXPECT_EQ(json_array(json::array({1, 2}), "a", 1, 2).size(), 2u);
+  expect_field([] { json_array(json::array({1, 2, 3}), "a", 1, 2); }, "a", 413);
+  expect_field([] { json_array(json::array(), "a", 1, 2); }, "a");
+  EXPECT_EQ(json_string(json("abc"), "s", 3), "abc");
+  expect_field([] { json_string(json("abcd"), "s", 3); }, "s", 413);
+  expect_field([] { reject_unknown(json{{"a", 1}, {"zz", 2}}, "obj", {"a"}); }, "obj.zz");
+  EXPECT_EQ(member(json{{"a", 1}}, "a")->get<int>(), 1);
+  EXPECT_EQ(member(json{{"a", 1}}, "b"), nullptr);
+  EXPECT_EQ(member(json::array(), "a"), nullptr);
+}
+
+TEST(Params, QueryNumbersAndChoices) {
+  Request req{"GET", "/x", {{"w", "0.5"}, {"f", "topology"}, {"bad", "1e999"}}, {}, "", ""};
+  EXPECT_EQ(query_number(req, "w", 0, 1, 0.7), 0.5);
+  EXPECT_EQ(query_number(req, "missing", 0, 1, 0.7), 0.7);
+  expect_field([&] { query_number(req, "bad", 0, 1, 0.7); }, "bad");
+  expect_field([&] { query_number(req, "w", 0.6, 1, 0.7); }, "w");
+  EXPECT_EQ(query_choice(req, "f", {"geojson", "topology"}, "geojson"), "topology");
+  EXPECT_EQ(query_choice(req, "g", {"geojson", "topology"}, "geojson"), "geojson");
+  expect_field([&] { query_choice(req, "w", {"geojson", "topology"}, "geojson"); }, "w");
 }
 
 }  // namespace

@@ -9,9 +9,9 @@ Response ok(Request&) { return json_response({{"ok", true}}); }
 
 TEST(Router, MatchesLiteralsAndParameters) {
   Router router;
-  router.add("GET", "/api/v1/cities", Exec::compute, ok);
-  router.add("GET", "/api/v1/cities/{id}/metro", Exec::compute, ok);
-  router.add("POST", "/api/v1/cities/{id}/pois/query", Exec::compute, ok);
+  router.add("GET", "/api/v1/cities", Exec::heavy, ok);
+  router.add("GET", "/api/v1/cities/{id}/metro", Exec::heavy, ok);
+  router.add("POST", "/api/v1/cities/{id}/pois/query", Exec::heavy, ok);
 
   Request req;
   req.method = "GET";
@@ -29,7 +29,7 @@ TEST(Router, MatchesLiteralsAndParameters) {
 
 TEST(Router, ReportsAllowedMethods) {
   Router router;
-  router.add("POST", "/api/v1/cities/{id}/pois/query", Exec::compute, ok);
+  router.add("POST", "/api/v1/cities/{id}/pois/query", Exec::heavy, ok);
   Request req;
   req.method = "GET";
   req.path = "/api/v1/cities/x/pois/query";

@@ -4,6 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -41,6 +44,32 @@ TEST(Upload, DirectoryHoldsFilesUntilDestroyed) {
     EXPECT_TRUE(std::filesystem::is_directory(dir));
   }
   EXPECT_FALSE(std::filesystem::exists(dir));
+}
+
+// A server killed during an upload leaves its directory; the next start removes it, but never
+// one of a process that still runs (servers may share a temp dir).
+TEST(Upload, StaleDirectoriesOfDeadProcessesAreRemoved) {
+  namespace fs = std::filesystem;
+  const fs::path parent = fs::temp_directory_path() / ("tourmap-upload-test-" + std::to_string(::getpid()));
+  fs::create_directories(parent);
+  const pid_t dead = ::fork();
+  if (dead == 0) ::_exit(0);
+  ::waitpid(dead, nullptr, 0);
+  const auto stale = parent / ("tourmap-upload-" + std::to_string(dead) + "-AbCdEf");
+  fs::create_directories(stale);
+  std::ofstream(stale / "roads.osm") << "<osm/>";
+  const auto unrelated = parent / "tourmap-upload-notapid";
+  fs::create_directories(unrelated);
+  {
+    UploadDir live(parent);  // this process's: kept
+    const auto mine = fs::path(live.write("a.osm", "<osm/>")).parent_path();
+    EXPECT_EQ(mine.filename().string().rfind("tourmap-upload-" + std::to_string(::getpid()) + "-", 0), 0u);
+    EXPECT_EQ(remove_stale_uploads(parent), 1u);
+    EXPECT_FALSE(fs::exists(stale));
+    EXPECT_TRUE(fs::exists(mine));
+    EXPECT_TRUE(fs::exists(unrelated));
+  }
+  fs::remove_all(parent);
 }
 
 }  // namespace

@@ -56,17 +56,52 @@ async function requestJson<T>(path: string, init: RequestInit): Promise<T> {
   return (await requestWithHeaders<T>(path, init)).body;
 }
 
+/** Retries of a request the server asked to repeat later (429 or 503 with Retry-After). */
+const MAX_RETRIES = 3;
+/** Longest wait before a retry, whatever Retry-After says. */
+const MAX_RETRY_WAIT_MS = 5000;
+
+/** Resolves after `ms`, or rejects with an AbortError when `signal` aborts first. */
+function wait(ms: number, signal?: AbortSignal | null): Promise<void> {
+  return new Promise((resolve, reject) => {
+    if (signal?.aborted) return reject(new DOMException('aborted', 'AbortError'));
+    const timer = window.setTimeout(resolve, ms);
+    signal?.addEventListener(
+      'abort',
+      () => {
+        window.clearTimeout(timer);
+        reject(new DOMException('aborted', 'AbortError'));
+      },
+      { once: true },
+    );
+  });
+}
+
+/** The wait a 429 or 503 asks for, or null for other answers (retried quietly, not shown). */
+function retryDelayMs(response: Response): number | null {
+  if (response.status !== 429 && response.status !== 503) return null;
+  const seconds = Number(response.headers.get('Retry-After'));
+  if (!Number.isFinite(seconds) || seconds < 0) return null;
+  return Math.min(Math.max(seconds * 1000, 250), MAX_RETRY_WAIT_MS);
+}
+
 /** requestJson, also handing back the answer's headers (X-Result-Cache, say). */
 async function requestWithHeaders<T>(path: string, init: RequestInit): Promise<{ body: T; headers: Headers }> {
-  let response: Response;
-  try {
-    response = await fetch(API_ROOT + path, { ...init, headers: { Accept: 'application/json', ...init.headers } });
-  } catch (error) {
-    if (isAbort(error)) throw error;
-    throw new ApiError(0, 'network', 'The tourmap server cannot be reached. Check your connection and try again.');
+  for (let attempt = 0; ; attempt++) {
+    let response: Response;
+    try {
+      response = await fetch(API_ROOT + path, { ...init, headers: { Accept: 'application/json', ...init.headers } });
+    } catch (error) {
+      if (isAbort(error)) throw error;
+      throw new ApiError(0, 'network', 'The tourmap server cannot be reached. Check your connection and try again.');
+    }
+    if (response.ok) return { body: (await response.json()) as T, headers: response.headers };
+    // Busy or rate limited: the server says when to come back; try again quietly a few times.
+    const delay = retryDelayMs(response);
+    if (delay === null || attempt >= MAX_RETRIES) throw await errorFrom(response);
+    await response.body?.cancel();
+    await wait(Math.min(delay * (attempt + 1), MAX_RETRY_WAIT_MS), init.signal);
   }
-  if (!response.ok) throw await errorFrom(response);
-  return { body: (await response.json()) as T, headers: response.headers };
 }
 
 function getJson<T>(path: string, signal?: AbortSignal): Promise<T> {
