@@ -37,7 +37,8 @@ CrowdView apply_view_message(const nlohmann::json& msg, const CrowdView& current
   if (!msg.contains("type") || msg["type"] != "view") throw bad("type", "expected \"view\" (or \"ack\")");
   CrowdView v = current;
   if (msg.contains("scene")) {
-    const std::string id = json_string(msg["scene"], "scene", 64);
+    if (!msg["scene"].is_string()) throw bad("scene", "expected a string");
+    const std::string& id = msg["scene"].get_ref<const std::string&>();
     const auto* spec = crowd::find_scene_spec(id);
     if (!spec) throw bad("scene", "unknown scene '" + shown(id) + "'");
     if (id != v.scene) {  // a new scene: its own defaults

@@ -48,8 +48,8 @@ if [[ -n "${SERVER_CPUS:-}" ]]; then  # tm_start_server runs $bin: pin it throug
   bin="$tmp/pinned"
 fi
 # shellcheck disable=SC2086  # SERVE_ARGS is a list of options
-tm_start_server "$tmp/t.db" --data-dir "$data" --rate-limit 0 ${SERVE_ARGS:-}
-log "server pid $server_pid on port $port ($(grep -o '[0-9]* io + [0-9]* compute threads' "$tmp/server.log"))"
+tm_start_server "$tmp/t.db" --data-dir "$data" --rate-limit 0 --max-compute-per-client 0 ${SERVE_ARGS:-}
+log "server pid $server_pid on port $port ($(grep -o '[0-9]* io + [0-9]* read + [0-9]* compute threads' "$tmp/server.log"))"
 tm_warm_up
 
 clock_ticks="$(getconf CLK_TCK)"

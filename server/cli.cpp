@@ -102,6 +102,8 @@ int cmd_serve(const std::vector<std::string>& args) {
       ("read-queue", po::value(&c.read_queue)->default_value(c.read_queue), "queued reads before answering 503")
       ("read-deadline", po::value(&c.read_deadline_s)->default_value(c.read_deadline_s),
        "seconds a read may wait for a read thread (then 503)")
+      ("max-reads-per-client", po::value(&c.max_reads_per_client)->default_value(c.max_reads_per_client),
+       "reads a client address may have queued or running (429 beyond; 0: no cap)")
       ("max-body", po::value(&c.max_body_bytes)->default_value(c.max_body_bytes), "request body limit (bytes)")
       ("max-upload", po::value(&c.max_upload_bytes)->default_value(c.max_upload_bytes),
        "body limit of write requests with a valid API key, e.g. imports (bytes)")

@@ -42,6 +42,7 @@ void ComputePool::shutdown() {
   for (auto& t : workers_)
     if (t.joinable()) t.join();
   workers_.clear();
+  deadlines_.notify_all();  // the workers drained the queue: the watcher has nothing left to wait for
   if (watcher_.joinable()) watcher_.join();
 }
 
@@ -106,8 +107,9 @@ void ComputePool::work() {
       }
       ++busy_;
     }
-    item.task(Clock::now() > item.deadline);
+    const Then then = item.task(Clock::now() > item.deadline);
     finished(item.client);
+    if (then) then();
   }
 }
 
@@ -147,7 +149,8 @@ void ComputePool::watch() {
     }
     expired_in_queue_ += expired.size();
     lock.unlock();
-    for (auto& item : expired) item.task(true);
+    for (auto& item : expired)
+      if (const Then then = item.task(true)) then();
     lock.lock();
   }
 }

@@ -21,6 +21,7 @@
 #include <mutex>
 #include <string>
 #include <thread>
+#include <type_traits>
 #include <vector>
 
 namespace tourmap::server {
@@ -28,9 +29,13 @@ namespace tourmap::server {
 class ComputePool {
  public:
   using Clock = std::chrono::steady_clock;
+  // What a task hands back to run once its client's slot is free again: the server posts the
+  // answer there, so a client that sends its next request the moment it has the answer is never
+  // refused because its previous one still counts.
+  using Then = std::function<void()>;
   // `run(expired)`: expired is true when the deadline passed before a worker got to it (then
   // run on the watcher thread, so it must only answer, never compute).
-  using Task = std::function<void(bool expired)>;
+  using Task = std::function<Then(bool expired)>;
 
   struct Options {
     unsigned threads = 1;
@@ -46,9 +51,20 @@ class ComputePool {
   ComputePool& operator=(const ComputePool&) = delete;
 
   Admission admit(Task task, Clock::time_point deadline, const std::string& client = {});
+  // A task with nothing to run after its slot is freed.
+  template <class F>
+    requires std::is_void_v<std::invoke_result_t<F&, bool>>
+  Admission admit(F task, Clock::time_point deadline, const std::string& client = {}) {
+    return admit(Task([task = std::move(task)](bool expired) mutable -> Then {
+                   task(expired);
+                   return {};
+                 }),
+                 deadline, client);
+  }
   // True when admitted (the task will run, expired or not).
-  bool submit(Task task, Clock::time_point deadline, const std::string& client = {}) {
-    return admit(std::move(task), deadline, client) == Admission::accepted;
+  template <class F>
+  bool submit(F&& task, Clock::time_point deadline, const std::string& client = {}) {
+    return admit(std::forward<F>(task), deadline, client) == Admission::accepted;
   }
   // Stops taking work, runs what is queued, joins the workers and the watcher.
   void shutdown();

@@ -24,6 +24,7 @@ struct Config {
   unsigned read_threads = 2;
   std::size_t read_queue = 512;
   double read_deadline_s = 10.0;
+  std::size_t max_reads_per_client = 64;   // queued or running per client address (429 beyond; 0: no cap)
   std::size_t max_body_bytes = 1 << 20;    // 413 beyond
   std::size_t max_upload_bytes = 64 << 20; // bodies of write requests with a valid API key (imports)
   std::size_t max_header_bytes = 16 << 10; // 431 beyond; also the budget of chunked trailers

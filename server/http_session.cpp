@@ -310,7 +310,10 @@ void HttpSession::run_on_pool(const api::Route& route, api::Request&& areq, cons
   const double timeout_s = heavy ? config.compute_timeout_s : 0.0;
   auto cancelled = std::make_shared<std::atomic<bool>>(false);
   auto self = shared_from_this();
-  auto task = [self, &route, areq = std::move(areq), facts, cancelled, wait_s, timeout_s](bool expired) mutable {
+  // The task computes on the pool and hands back what posts the answer to this connection's
+  // strand: the pool runs that once the client's slot is free (compute_pool.hpp).
+  auto task = [self, &route, areq = std::move(areq), facts, cancelled, wait_s, timeout_s](
+                  bool expired) mutable -> ComputePool::Then {
     api::Response r;
     if (expired) {
       char text[96];
@@ -327,19 +330,22 @@ void HttpSession::run_on_pool(const api::Route& route, api::Request&& areq, cons
       r = run_handler(route, areq, timeout_s);
     }
     if (r.status == kClientClosedRequest)
-      return net::post(self->stream_.get_executor(), [self] { self->finish_abandoned(); });
+      return [self] { net::post(self->stream_.get_executor(), [self] { self->finish_abandoned(); }); };
     if (r.body.size() <= kFinishOnIoMaxBytes) {
-      net::post(self->stream_.get_executor(), [self, r = std::move(r), facts]() mutable {
-        self->stop_watching_client();
-        self->send(finish_or_fail(std::move(r), facts, self->state_.config), self->route_label_);
-      });
-      return;
+      return [self, r = std::make_shared<api::Response>(std::move(r)), facts] {
+        net::post(self->stream_.get_executor(), [self, r, facts] {
+          self->stop_watching_client();
+          self->send(finish_or_fail(std::move(*r), facts, self->state_.config), self->route_label_);
+        });
+      };
     }
-    net::post(self->stream_.get_executor(),
-              [self, res = finish_or_fail(std::move(r), facts, self->state_.config)]() mutable {
-                self->stop_watching_client();
-                self->send(std::move(res), self->route_label_);
-              });
+    auto res = std::make_shared<Response>(finish_or_fail(std::move(r), facts, self->state_.config));
+    return [self, res] {
+      net::post(self->stream_.get_executor(), [self, res] {
+        self->stop_watching_client();
+        self->send(std::move(*res), self->route_label_);
+      });
+    };
   };
   const auto admission = pool.admit(std::move(task), Clock::now() + seconds(wait_s), client_);
   if (admission != ComputePool::Admission::accepted) return refuse_admission(admission, heavy, facts);
@@ -348,13 +354,18 @@ void HttpSession::run_on_pool(const api::Route& route, api::Request&& areq, cons
 
 void HttpSession::refuse_admission(ComputePool::Admission admission, bool heavy, const RequestFacts& facts) {
   api::Response r;
-  if (admission == ComputePool::Admission::client_busy) {
+  if (admission == ComputePool::Admission::client_busy && heavy) {
     const auto cap = state_.config.max_compute_per_client;
     r = api::error_response(429, "too_many_computations",
                             "this address already has " + std::to_string(cap) + " expensive request" +
                                 (cap == 1 ? "" : "s") +
                                 " (layouts, deformations, rasters, clusters, imports) queued or running, the most "
                                 "it may have; send the next when one is answered");
+    r.headers.emplace_back("Retry-After", "1");
+  } else if (admission == ComputePool::Admission::client_busy) {
+    r = api::error_response(429, "too_many_reads",
+                            "this address already has " + std::to_string(state_.config.max_reads_per_client) +
+                                " reads queued or running, the most it may have; retry shortly");
     r.headers.emplace_back("Retry-After", "1");
   } else {
     r = api::error_response(503, "overloaded",

@@ -69,7 +69,7 @@ struct ServerState {
   explicit ServerState(Config cfg)
       : config(std::move(cfg)),
         compute_pool({config.compute_threads, config.compute_queue, config.max_compute_per_client}),
-        read_pool({config.read_threads, config.read_queue, 0}),
+        read_pool({config.read_threads, config.read_queue, config.max_reads_per_client}),
         access_log(config.access_log),
         static_files(config.web_root),
         rate_limiter(rate_limiter_options(config)),

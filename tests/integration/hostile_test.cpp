@@ -4,6 +4,7 @@
 // serving. Latency bounds are loose under the sanitizers (everything runs 5-20x slower there).
 
 #include "live_server.hpp"
+#include "slowdown.hpp"
 
 #include <gtest/gtest.h>
 #include <zlib.h>
@@ -34,11 +35,7 @@ namespace {
 using namespace std::chrono_literals;
 using Clock = std::chrono::steady_clock;
 
-#if defined(TOURMAP_SANITIZED)
-constexpr double kSlow = 10.0;  // ASan+UBSan builds
-#else
-constexpr double kSlow = 1.0;
-#endif
+constexpr double kSlow = kSlowdown;  // slowdown.hpp
 
 double ms_since(Clock::time_point t0) { return std::chrono::duration<double, std::milli>(Clock::now() - t0).count(); }
 
@@ -126,7 +123,7 @@ class CheapReadProbe {
  public:
   explicit CheapReadProbe(unsigned short port)
       : thread_([this, port] {
-          while (!stop_) {
+          do {  // at least one sample, however short the attack
             const auto t0 = Clock::now();
             const int status = http_get(port, "/api/v1/cities").status;
             const double ms = ms_since(t0);
@@ -136,7 +133,7 @@ class CheapReadProbe {
               if (status != 200) ++failures_;
             }
             std::this_thread::sleep_for(50ms);
-          }
+          } while (!stop_);
         }) {}
   ~CheapReadProbe() { finish(); }
   void finish() {
@@ -340,7 +337,7 @@ TEST(Hostile, CsvOfCommasFailsFastInLittleMemory) {
   EXPECT_LT(ms_since(t0), 5000 * kSlow);
   // The body (60 MB) was held; parsing it must not have added gigabytes.
   const long grown_mb = (rss_kb(live.server->pid()) - rss_before) / 1024;
-  EXPECT_LT(grown_mb, 400) << "the server grew by " << grown_mb << " MB";
+  EXPECT_LT(grown_mb, 400 * (kSlow > 1 ? 2 : 1)) << "the server grew by " << grown_mb << " MB";  // ASan's quarantine
 }
 
 TEST(Hostile, DuplicateMetroEdgesAreMergedAndLayoutStaysFast) {
@@ -450,6 +447,12 @@ TEST(Hostile, StaleUploadDirectoriesAreRemovedAtStart) {
 }
 
 TEST(Hostile, AcceptBacksOffWhenOutOfDescriptors) {
+#if defined(TOURMAP_SANITIZED)
+  // UBSan checks dynamic types by probing memory through a pipe (sanitizer_common's
+  // IsAccessibleMemoryRange); with no descriptor left that fails, and every virtual call is
+  // reported as undefined behaviour. The release build runs this test.
+  GTEST_SKIP() << "needs free file descriptors in the sanitizer runtime";
+#endif
   rlimit saved{};
   ASSERT_EQ(getrlimit(RLIMIT_NOFILE, &saved), 0);
   rlimit low = saved;

@@ -2,8 +2,9 @@
 # Load tests: starts `build/tourmap serve` on a free port with a temporary database holding the
 # sample data, warms it up (metro layouts, cluster trees, deformation factorization, crowd scene),
 # then runs wrk with tests/load/{read,clusters,deform}.lua, the crowd WebSocket client
-# tests/load/crowd_ws.mjs and an overload burst on the deform endpoint, and prints one markdown
-# table with throughput, latency, errors and the server's RSS (VmRSS) before and after each row.
+# tests/load/crowd_ws.mjs, an overload burst on the deform endpoint, and the read mix measured
+# while that burst and four MIP layouts run (isolation), and prints one markdown table with
+# throughput, latency, errors and the server's RSS (VmRSS) before and after each row.
 # Exits non-zero when the server died.
 #
 #   tests/load/run.sh [seconds per row, 10] [connections, 16]
@@ -12,9 +13,10 @@
 # the cores with the server), GZIP=0 (no Accept-Encoding: gzip), DEFORM_ROADS (monaco),
 # CROWD_CLIENTS (6: two over the default stream cap of 4), CROWD_MAX_SUBDIVISION (-1: the scenes'),
 # OVERLOAD_CONNECTIONS (512; 256 only fills the default compute queue), OVERLOAD_SECONDS (5),
-# RATE_LIMIT (0: the per-client limiter off), SERVE_ARGS (extra `tourmap serve` options),
-# ROWS (which rows, default "read clusters deform crowd overload"; e.g. ROWS=clusters measures the
-# cluster endpoint alone and skips the deform and crowd warm-ups).
+# RATE_LIMIT (0: the per-client limiter off), MAX_COMPUTE_PER_CLIENT (0: no per-client cap on
+# compute requests), ISOLATION_SECONDS (12), SERVE_ARGS (extra `tourmap serve` options),
+# ROWS (which rows, default "read clusters deform crowd overload isolation"; e.g. ROWS=clusters
+# measures the cluster endpoint alone and skips the deform and crowd warm-ups).
 # Needs wrk, node 20+, python3 and curl. Progress goes to stderr, the table to stdout.
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
@@ -28,7 +30,7 @@ deform_roads="${DEFORM_ROADS:-monaco}"
 crowd_clients="${CROWD_CLIENTS:-6}"
 overload_connections="${OVERLOAD_CONNECTIONS:-512}"
 overload_seconds="${OVERLOAD_SECONDS:-5}"
-rows_wanted=" ${ROWS:-read clusters deform crowd overload} "
+rows_wanted=" ${ROWS:-read clusters deform crowd overload isolation} "
 want() { [[ "$rows_wanted" == *" $1 "* ]]; }
 
 for tool in wrk node python3 curl; do
@@ -45,10 +47,15 @@ log() { echo "[load] $*" >&2; }
 
 log "importing the sample data from $data"
 "$bin" import manifest "$here/scripts/sample-data.json" --data-dir "$data" --db "$tmp/t.db" >/dev/null
-# All load comes from one address: the per-client rate limiter (when the binary has one) is off
-# unless RATE_LIMIT says otherwise, else every row would measure 429s.
+# All load comes from one address: the per-client rate limiter and the per-client cap on compute
+# requests (when the binary has them) are off unless RATE_LIMIT / MAX_COMPUTE_PER_CLIENT say
+# otherwise, else every row would measure 429s.
 serve_args=(--data-dir "$data" --crowd-max-subdivision "${CROWD_MAX_SUBDIVISION:--1}")
-if grep -q -- --rate-limit <<<"$("$bin" serve --help)"; then serve_args+=(--rate-limit "${RATE_LIMIT:-0}"); fi
+serve_help="$("$bin" serve --help)"
+if grep -q -- --rate-limit <<<"$serve_help"; then serve_args+=(--rate-limit "${RATE_LIMIT:-0}"); fi
+if grep -q -- --max-compute-per-client <<<"$serve_help"; then
+  serve_args+=(--max-compute-per-client "${MAX_COMPUTE_PER_CLIENT:-0}")
+fi
 # shellcheck disable=SC2086  # SERVE_ARGS is a list of options
 tm_start_server "$tmp/t.db" "${serve_args[@]}" ${SERVE_ARGS:-}
 url="http://127.0.0.1:$port"
@@ -56,7 +63,7 @@ log "server pid $server_pid on port $port, RSS $(tm_rss)"
 
 # --- warm-up: what the rows need computed once, and the boxes the scripts draw windows from ---
 tm_warm_up
-want deform || want overload || deform_roads=
+want deform || want overload || want isolation || deform_roads=
 # shellcheck disable=SC2086  # a list of ids
 deform_boxes="$(tm_deform_boxes $deform_roads)"
 crowd() { node --no-warnings --experimental-websocket "$load/crowd_ws.mjs" --port "$port" "$@"; }
@@ -153,6 +160,27 @@ if want overload; then
   sleep 1
   tm_get /healthz >/dev/null || log "after the overload /healthz did not answer 200"
   tm_alive || died "after overload" "$(tm_rss)"
+fi
+
+# Isolation (issue 12): the overload burst and four MIP layouts (London, distinct w_r, so none
+# is cached) run in the background while the read mix is measured on its own connections. The
+# reads run on their own pool and must stay fast whatever the compute pool does.
+if want isolation; then
+  iso_s="${ISOLATION_SECONDS:-12}"
+  log "isolation: overload (c=$overload_connections) + 4 MIP layouts for ${iso_s} s; measuring the read mix"
+  env ROADS="$deform_boxes" wrk -t"$wrk_threads" -c"$overload_connections" -d"${iso_s}s" -T5s -s "$load/deform.lua" \
+    "$url" >"$tmp/isolation-overload.txt" 2>&1 &
+  iso_pids=($!)
+  for w_r in 0.12 0.23 0.34 0.45; do
+    curl -s -o /dev/null -w "%{http_code} %{time_total}\n" \
+      "$url/api/v1/cities/london/layout?solver=mip&time_limit_s=$((iso_s - 2))&w_r=$w_r" >>"$tmp/isolation-mip.txt" &
+    iso_pids+=($!)
+  done
+  sleep 1
+  wrk_row "read mix during overload + 4 MIP layouts (c=4)" read.lua 4 "$((iso_s - 3))" 2s normal
+  wait "${iso_pids[@]}" || true
+  log "isolation: MIP layouts answered (status, seconds): $(tr '\n' ' ' <"$tmp/isolation-mip.txt")"
+  tm_alive || died "after isolation" "$(tm_rss)"
 fi
 
 print_table

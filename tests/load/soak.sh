@@ -33,7 +33,7 @@ log() { echo "[soak] $*" >&2; }
 
 log "importing the sample data from $data"
 "$bin" import manifest "$here/scripts/sample-data.json" --data-dir "$data" --db "$tmp/t.db" >/dev/null
-tm_start_server "$tmp/t.db" --data-dir "$data" --rate-limit 0 --crowd-max-subdivision "${CROWD_MAX_SUBDIVISION:--1}"
+tm_start_server "$tmp/t.db" --data-dir "$data" --rate-limit 0 --max-compute-per-client 0 --crowd-max-subdivision "${CROWD_MAX_SUBDIVISION:--1}"
 log "server pid $server_pid on port $port, RSS $(tm_rss)"
 tm_warm_up
 # shellcheck disable=SC2086  # a list of ids

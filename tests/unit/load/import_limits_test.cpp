@@ -9,6 +9,7 @@
 #include "load/osm_input.hpp"
 #include "load/osm_roads.hpp"
 #include "load/poi_load.hpp"
+#include "slowdown.hpp"
 #include "temp_dir.hpp"
 #include "test_data.hpp"
 #include "util/stop.hpp"
@@ -116,7 +117,7 @@ TEST(CsvLimits, SixtyMegabytesOfCommasFailFast) {
   const std::string commas(60 << 20, ',');
   const auto start = Clock::now();
   auto what = expect_limit([&] { parse_csv(commas, "commas.csv"); }, "max_csv_fields");
-  EXPECT_LT(seconds_since(start), 1.0);  // stops at field 1,001 of the header
+  EXPECT_LT(seconds_since(start), 1.0 * test::kSlowdown);  // stops at field 1,001 of the header
   EXPECT_TRUE(contains(what, "commas.csv line 1")) << what;
 }
 
@@ -201,7 +202,7 @@ TEST(MetroLimits, TwentyThousandDuplicateLoomEdgesBecomeOne) {
   const auto start = Clock::now();
   MetroLoadStats stats;
   auto net = parse_metro_loom(json, "dups.json", {}, &stats);
-  EXPECT_LT(seconds_since(start), 5.0);
+  EXPECT_LT(seconds_since(start), 5.0 * test::kSlowdown);
   ASSERT_EQ(net.edges.size(), 1u);
   EXPECT_EQ(net.edges[0].lines.size(), 3u);             // the union of the copies' lines
   EXPECT_EQ(net.edges[0].geometry.size(), 3u);          // the first copy's geometry
@@ -313,7 +314,7 @@ TEST(PoiLimits, SixtyMegabyteNameIsRefusedNotTruncated) {
   const std::string huge(60 << 20, 'n');
   const auto start = Clock::now();
   auto what = expect_limit([&] { parse_pois_geojson(poi_geojson(3, huge), "huge.geojson"); }, "max_name_bytes");
-  EXPECT_LT(seconds_since(start), 5.0);
+  EXPECT_LT(seconds_since(start), 5.0 * test::kSlowdown);
   EXPECT_TRUE(contains(what, "huge.geojson feature 0")) << what.substr(0, 200);
   EXPECT_TRUE(contains(what, "name is 62914560 bytes long")) << what.substr(0, 200);
   EXPECT_LT(what.size(), 500u);  // the message does not quote the text
@@ -394,7 +395,7 @@ TEST(OsmLimits, GzipBombIsRefusedByTheByteCapQuickly) {
   auto what = expect_limit([&] { load_osm_roads(path); }, "max_osm_decompressed_bytes");  // default: 1 GiB
   const double seconds = seconds_since(start);
   std::printf("gzip bomb (2 GiB of whitespace in %zu bytes) refused after %.2f s\n", bomb.size(), seconds);
-  EXPECT_LT(seconds, 20.0);  // ~1-2 s: 1 GiB inflated and spooled; libosmium never runs
+  EXPECT_LT(seconds, 20.0 * test::kSlowdown);  // ~1-2 s: 1 GiB inflated and spooled; libosmium never runs
   EXPECT_TRUE(contains(what, "bomb.osm.gz")) << what;
   EXPECT_EQ(open_fds(), fds);
   EXPECT_EQ(spool_files(), spools);
@@ -408,7 +409,7 @@ TEST(OsmLimits, GzipBombIsRefusedByTheByteCapQuickly) {
   } catch (const LimitExceeded& e) {
     EXPECT_EQ(e.value(), 16u << 20);
   }
-  EXPECT_LT(seconds_since(small_start), 2.0);
+  EXPECT_LT(seconds_since(small_start), 2.0 * test::kSlowdown);
 }
 
 TEST(OsmLimits, Bzip2BombIsRefusedByTheByteCap) {
@@ -423,7 +424,7 @@ TEST(OsmLimits, Bzip2BombIsRefusedByTheByteCap) {
   expect_limit([&] { load_osm_roads(path, nullptr, limits); }, "max_osm_decompressed_bytes");
   const double seconds = seconds_since(start);
   std::printf("bzip2 bomb (2 GiB of whitespace in %zu bytes) refused at 64 MiB after %.2f s\n", bomb.size(), seconds);
-  EXPECT_LT(seconds, 5.0);
+  EXPECT_LT(seconds, 5.0 * test::kSlowdown);
   EXPECT_EQ(open_fds(), fds);
 }
 
@@ -571,7 +572,7 @@ TEST_F(StopTest, ClientGoneStopsABombWhileItIsDecompressed) {
     ADD_FAILURE() << "expected util::Stopped, got " << e.what();
   }
   disconnect.join();
-  EXPECT_LT(seconds_since(start), 3.0);
+  EXPECT_LT(seconds_since(start), 3.0 * test::kSlowdown);
 }
 
 }  // namespace
