@@ -76,7 +76,7 @@ DeformService::DeformService(Catalog& catalog, DeformLimits limits)
       results_(limits.result_cache_bytes) {}
 
 DeformService::CacheStats DeformService::cache_stats() const {
-  return {networks_.size(), prepared_.size(), results_.size(), results_.used()};
+  return {networks_.size(), prepared_.size(), results_.size(), results_.used(), networks_.used(), prepared_.used()};
 }
 
 std::shared_ptr<const DeformNetwork> DeformService::network_for(const DeformRequest& r) {

@@ -51,6 +51,7 @@ class DeformService {
 
   struct CacheStats {
     std::size_t networks, prepared, results, result_bytes;
+    std::size_t network_bytes = 0, prepared_bytes = 0;  // as charged to the caches' budgets
   };
   CacheStats cache_stats() const;
 

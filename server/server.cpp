@@ -142,6 +142,12 @@ int serve(const Config& config, const std::function<void(unsigned short)>& on_li
                           [&crowd] { return static_cast<double>(crowd.streams()); });
   state.metrics.add_gauge("tourmap_crowd_frames_sent", "Crowd frames sent since the start (grows).",
                           [&crowd] { return static_cast<double>(crowd.frames_sent()); });
+  state.metrics.add_gauge("tourmap_deform_cache_bytes",
+                          "Bytes the deformation caches hold (networks, prepared systems, answers), as charged.",
+                          [&deform] {
+                            const auto s = deform.cache_stats();
+                            return static_cast<double>(s.network_bytes + s.prepared_bytes + s.result_bytes);
+                          });
   state.metrics.add_gauge("tourmap_crowd_variants_evicted",
                           "Prepared crowd scene variants (scene, count) evicted to make room (grows).",
                           [&crowd] { return static_cast<double>(crowd.variants_evicted()); });

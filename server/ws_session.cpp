@@ -5,6 +5,8 @@
 #include <boost/asio/dispatch.hpp>
 #include <boost/asio/post.hpp>
 
+#include <cstdio>
+
 namespace tourmap::server {
 
 namespace beast = boost::beast;
@@ -57,7 +59,12 @@ void WsSession::accept(beast::http::request<beast::http::string_body>&& req) {
   ws_.async_accept(*shared_req, [self = shared_from_this(), shared_req](beast::error_code ec) {
     if (ec) return;
     self->open_ = true;
-    if (self->endpoint_.on_open) self->endpoint_.on_open(self);
+    try {
+      if (self->endpoint_.on_open) self->endpoint_.on_open(self);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "error: WebSocket %s: %s\n", self->path_.c_str(), e.what());
+      return self->close(websocket::close_code::internal_error, "internal error");
+    }
     self->read();
     self->write_next();
   });
@@ -133,7 +140,16 @@ void WsSession::on_read(beast::error_code ec, std::size_t) {
   std::string text = beast::buffers_to_string(buffer_.data());
   buffer_.consume(buffer_.size());
   if (ws_.got_text() && endpoint_.on_text) {
-    endpoint_.on_text(shared_from_this(), text);
+    // Endpoints answer bad messages themselves; anything they throw is a fault of ours: the
+    // client hears so and the connection closes (1011), the server goes on.
+    try {
+      endpoint_.on_text(shared_from_this(), text);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "error: WebSocket %s: %s\n", path_.c_str(), e.what());
+      send_text(api::ws_error_message("internal", "internal error while handling the message"));
+      close(websocket::close_code::internal_error, "internal error");
+      return;
+    }
   } else if (!ws_.got_text()) {
     send_text(api::ws_error_message("unsupported", "send JSON text messages, not binary ones", "type"));
   }

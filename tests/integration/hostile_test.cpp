@@ -125,7 +125,11 @@ class CheapReadProbe {
       : thread_([this, port] {
           do {  // at least one sample, however short the attack
             const auto t0 = Clock::now();
-            const int status = http_get(port, "/api/v1/cities").status;
+            int status = 0;
+            try {
+              status = http_get(port, "/api/v1/cities").status;
+            } catch (const std::exception&) {  // no answer at all: the server died or hung up
+            }
             const double ms = ms_since(t0);
             {
               std::lock_guard lock(mutex_);

@@ -9,6 +9,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cstdlib>
 #include <fstream>
 #include <map>
 #include <memory>
@@ -18,7 +19,9 @@
 
 namespace tourmap::test {
 
-inline const char* kTourmapBin = TOURMAP_BIN;
+// The binary under test; TOURMAP_TEST_BIN runs the suite against another build (an older one,
+// to show that a regression test fails without its fix).
+inline const char* kTourmapBin = std::getenv("TOURMAP_TEST_BIN") ? std::getenv("TOURMAP_TEST_BIN") : TOURMAP_BIN;
 
 // The manifest the integration tests import (paths relative to the shared data directory).
 inline std::string small_manifest() {
