@@ -4,6 +4,7 @@
 #include <GeographicLib/TransverseMercator.hpp>
 
 #include <cstdio>
+#include <limits>
 
 namespace tourmap::geo {
 namespace {
@@ -15,10 +16,17 @@ const GeographicLib::TransverseMercator& tm() {
   return instance;
 }
 
-// Northing of the origin, so that the origin maps to (0, 0).
+// Northing of the origin, so that the origin maps to (0, 0). Remembered for the last origin
+// per thread: a batch (a 512 x 512 raster's cell centres) projects many points about one
+// origin, and this was half of each project() call.
 double origin_northing(const LocalProjection& proj) {
+  thread_local LonLat last_origin{std::numeric_limits<double>::quiet_NaN(), 0.0};
+  thread_local double last_northing = 0.0;
+  if (proj.origin.lon == last_origin.lon && proj.origin.lat == last_origin.lat) return last_northing;
   double x = 0.0, y = 0.0;
   tm().Forward(proj.origin.lon, proj.origin.lat, proj.origin.lon, x, y);
+  last_origin = proj.origin;
+  last_northing = y;
   return y;
 }
 
