@@ -20,6 +20,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -412,6 +413,35 @@ TEST(Hostile, DeletedDataCanBeImportedAgainFromTheSameBytes) {
   ASSERT_EQ(again.status, 200) << again.body;
   EXPECT_EQ(nlohmann::json::parse(again.body)["skipped"], false);
   EXPECT_EQ(live.get("/api/v1/cities/freiburg").status, 200);
+}
+
+// Focus polygons: every road edge is tested against every region, so their vertices share one
+// budget (32 polygons of 2,150 vertices took 3.65 s on Liechtenstein).
+TEST(Hostile, FocusPolygonsShareOneVertexBudget) {
+  LiveServer live;
+  auto ring = [](double lon, double lat, double r, int n) {
+    nlohmann::json pts = nlohmann::json::array();
+    for (int i = 0; i < n; ++i) {
+      const double a = 2 * M_PI * i / n;
+      pts.push_back({std::round((lon + r * std::cos(a)) * 1e7) / 1e7, std::round((lat + r * std::sin(a)) * 1e7) / 1e7});
+    }
+    return pts;
+  };
+  auto focus = [&](int polygons) {
+    nlohmann::json body = {{"roads", "monaco"}, {"output", {{"roads", "none"}}}, {"regions", nlohmann::json::array()}};
+    for (int k = 0; k < polygons; ++k)
+      body["regions"].push_back({{"polygon", ring(7.42, 43.735, 0.02 + 0.001 * k, 2150)}, {"scale", 2}});
+    return http_request(live.port(), "POST", "/api/v1/deform/focus", {{"Content-Type", "application/json"}}, body.dump());
+  };
+  CheapReadProbe probe(live.port());
+  const auto refused = focus(5);  // 10,750 vertices
+  EXPECT_EQ(refused.status, 413) << refused.body.substr(0, 300);
+  EXPECT_EQ(error_of(refused)["field"], "regions");
+  const auto t0 = Clock::now();
+  const auto within = focus(4);  // 8,600 vertices, each polygon over the whole of Monaco
+  EXPECT_EQ(within.status, 200) << within.body.substr(0, 300);
+  EXPECT_LT(ms_since(t0), 2000 * kSlow);
+  probe.expect_fast("focus polygons");
 }
 
 // --- unbounded shared state ---

@@ -34,7 +34,7 @@ class HandlersTest : public ::testing::Test {
     try {
       return m.route->handler(req);
     } catch (const ApiError& e) {
-      return error_response(e.status, e.code, e.what(), e.field);
+      return error_response(e);
     }
   }
 
