@@ -367,6 +367,9 @@ void HttpSession::refuse_admission(ComputePool::Admission admission, bool heavy,
                             "this address already has " + std::to_string(state_.config.max_reads_per_client) +
                                 " reads queued or running, the most it may have; retry shortly");
     r.headers.emplace_back("Retry-After", "1");
+  } else if (admission == ComputePool::Admission::stopping) {
+    r = api::error_response(503, "unavailable", "the server is shutting down; retry shortly");
+    r.headers.emplace_back("Retry-After", "1");
   } else {
     r = api::error_response(503, "overloaded",
                             std::string("the server is busy: its ") + (heavy ? "compute" : "read") +
