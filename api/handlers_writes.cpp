@@ -105,7 +105,7 @@ Response put_metro(AppContext& ctx, Request& req) {
     import.files = {dir.write(id + (import.format == store::MetroFormat::loom ? ".geojson" : ".csv"), req.body)};
   return run_import([&] {
     auto db = ctx.db.acquire();
-    return store::import_metro(*db, import);
+    return store::import_metro(*db, import, ctx.import_limits);
   });
 }
 
@@ -124,7 +124,7 @@ Response put_pois(AppContext& ctx, Request& req) {
                           query_bool(req, "force", false)};
   return run_import([&] {
     auto db = ctx.db.acquire();
-    return store::import_pois(*db, import);
+    return store::import_pois(*db, import, ctx.import_limits);
   });
 }
 
@@ -151,7 +151,7 @@ Response put_roads(AppContext& ctx, Request& req) {
   import.file = dir.write(id + "." + extension, req.body);
   return run_import([&] {
     auto db = ctx.db.acquire();
-    return store::import_roads(*db, import);
+    return store::import_roads(*db, import, ctx.import_limits);
   });
 }
 

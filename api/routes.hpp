@@ -9,6 +9,8 @@
 #include "metro_service.hpp"
 #include "router.hpp"
 
+#include "load/import_limits.hpp"
+
 #include <chrono>
 #include <string>
 
@@ -23,6 +25,7 @@ struct AppContext {
   std::chrono::steady_clock::time_point started = std::chrono::steady_clock::now();
   CrowdAssets* crowd = nullptr;  // null: the crowd scenes list without triangle counts
   CrowdLimits crowd_limits{};
+  load::ImportLimits import_limits{};  // what an upload may create (PUT imports)
 };
 
 // Limits applied by the handlers (documented in openapi.yaml).

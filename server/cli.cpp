@@ -9,6 +9,7 @@
 
 #include "api/mip_runner.hpp"
 #include "load/file.hpp"
+#include "load/import_limits.hpp"
 #include "load/load_error.hpp"
 #include "store/importer.hpp"
 #include "store/manifest.hpp"
@@ -127,12 +128,27 @@ int cmd_serve(const std::vector<std::string>& args) {
        "comma-separated origins allowed cross-origin requests ('*': any; empty: no CORS headers)")
       ("trusted-proxies", po::value(&c.trusted_proxies)->default_value(c.trusted_proxies),
        "comma-separated proxy addresses/CIDRs whose X-Forwarded-For names the client (rate limit, log)")
-      ("access-log", po::value(&c.access_log)->default_value(c.access_log), "'-' (stdout), 'off', or a file");
+      ("access-log", po::value(&c.access_log)->default_value(c.access_log), "'-' (stdout), 'off', or a file")
+      ("import-limit", po::value(&c.import_limits)->composing(),
+       "NAME=VALUE: an import limit for uploads (repeatable), e.g. max_pois=50000; `tourmap serve "
+       "--help-limits` lists them");
   desc.add(db_options(c));
+  desc.add_options()("help-limits", "list the import limits and their defaults");
   auto vm = parse_options(desc, {}, args);
   if (vm.count("help")) {
     std::cout << desc << "\n";
     return 0;
+  }
+  if (vm.count("help-limits")) {
+    for (const auto& l : load::list_limits(load::ImportLimits{}))
+      std::cout << l.name << " = " << l.value << " (" << l.unit << ")\n";
+    return 0;
+  }
+  try {
+    import_limits_of(c);
+  } catch (const std::invalid_argument& e) {
+    std::fprintf(stderr, "tourmap serve: --import-limit: %s\n", e.what());
+    return 2;
   }
   if (!(c.rate_limit >= 0.0) || !std::isfinite(c.rate_limit) ||
       (c.rate_limit > 0.0 && (!(c.rate_burst >= 1.0) || !std::isfinite(c.rate_burst)))) {

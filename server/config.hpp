@@ -2,8 +2,11 @@
 // Server configuration: defaults, overridden by TOURMAP_* environment variables, overridden by
 // command-line flags (`tourmap serve --help` lists them).
 
+#include "load/import_limits.hpp"
+
 #include <cstddef>
 #include <string>
+#include <vector>
 
 namespace tourmap::server {
 
@@ -41,10 +44,17 @@ struct Config {
   double rate_burst = 400.0;              // requests a client may make at once (token bucket size)
   std::string cors_origins;               // comma-separated allowed origins, "*" any; empty: no CORS
   std::string trusted_proxies;            // comma-separated addresses/CIDRs whose X-Forwarded-For is believed
+  // Import limits of uploads, NAME=VALUE (load/import_limits.hpp names them); the rest keep
+  // their defaults.
+  std::vector<std::string> import_limits;
 };
 
 // Built-in defaults for paths (from the build: the source's ../shared/data and build/web).
 Config default_config();
+
+// The import limits of uploads: the defaults, with `import_limits` ("NAME=VALUE") applied.
+// Throws std::invalid_argument naming a bad entry (unknown name, not a number).
+load::ImportLimits import_limits_of(const Config& config);
 
 // The largest --max-header: Beast's field table holds names and values below 64 KiB.
 inline constexpr std::size_t kMaxHeaderBytesLimit = 60u << 10;

@@ -131,6 +131,7 @@ int serve(const Config& config, const std::function<void(unsigned short)>& on_li
   api::CrowdAssets crowd_assets(config.data_dir + "/models", &db, config.crowd_max_subdivision);
   ctx.crowd = &crowd_assets;
   ctx.crowd_limits.max_streams = config.max_crowd_streams;
+  ctx.import_limits = import_limits_of(config);
   CrowdStreamer crowd(crowd_assets, ctx.crowd_limits);
   state.verify_api_key = [&db](std::string_view key) {
     auto conn = db.acquire();
