@@ -1,17 +1,20 @@
 #pragma once
-// A city's transit-centric tourist map (paper 5.4): visual worth -> edge lengths -> octilinear
-// layout -> POIs, outline and a mesh warped into it, with the quality report. Everything is in
-// one planar frame, metres in the city's projection: the layout is aligned to the geography by
-// a uniform scale and a translation (no rotation, which would break octilinearity), so clients
-// can animate between the two.
+// A city's transit-centric tourist map (paper 5.4) as the API serves it: the request's
+// parameters, and the answer as JSON. The computation (visual worth -> edge lengths ->
+// octilinear layout -> POIs, outline and a mesh warped into it, with the quality report) is
+// core's, metro/city_layout.hpp. Everything is in one planar frame, metres in the city's
+// projection: the layout is aligned to the geography by a uniform scale and a translation (no
+// rotation, which would break octilinearity), so clients can animate between the two.
 
 #include "http.hpp"
 #include "metro_data.hpp"
 #include "mip_runner.hpp"
 
+#include "metro/city_layout.hpp"
 #include "metro/layout_quality.hpp"
 #include "poi/cluster_tree.hpp"
 
+#include <chrono>
 #include <memory>
 #include <string>
 
@@ -19,7 +22,8 @@ namespace tourmap::api {
 
 struct LayoutRequest {
   bool worth_lengths = true;  // lengths=visual-worth (eq. 5.4) | uniform (the paper's DF4)
-  enum class Solver { automatic, fast, mip } solver = Solver::automatic;
+  using Solver = metro::LayoutSolver;  // auto | fast | mip (see below)
+  Solver solver = Solver::automatic;
   double time_limit_s = 10.0;
   RankSource rank = RankSource::automatic;
   metro::WorthParams worth;
@@ -43,11 +47,20 @@ struct CityLayout {
 // Solvers (parameter `solver`): "fast" is the grid-graph routing alone; "mip" polishes it with
 // the octilinear MIP for the rest of the time limit; "auto" routes, then polishes networks of up
 // to `kAutoMipStations` stations for a tenth of the time limit, at most 0.5 s. The MIP result is
-// kept only when it lowers the objective without adding crossings or order violations.
-inline constexpr std::size_t kAutoMipStations = 250;
-inline constexpr std::size_t kMaxMipColumns = 40000;
+// kept only when it lowers the objective without adding crossings, order violations or bends
+// (metro/mip_polish.hpp).
+inline constexpr std::size_t kAutoMipStations = metro::kAutoMipStations;
+inline constexpr std::size_t kMaxMipColumns = metro::kMaxMipColumns;
 std::shared_ptr<const CityLayout> compute_city_layout(const CityMetroData& data, const LayoutRequest& req,
                                                       const MipSolver& mip);
+
+// The core pipeline's parameters for a request (`mip` solves the MIP when it runs).
+metro::CityLayoutParams layout_params(const LayoutRequest& req, const MipSolver& mip);
+
+// The JSON answer for a computed layout; `started`: when the request's computation began
+// (timing_ms.total).
+std::string layout_body(const CityMetroData& data, const LayoutRequest& req, const metro::CityLayoutResult& layout,
+                        std::chrono::steady_clock::time_point started);
 
 // POI visual worth at their geographic positions with default parameters (for clusters).
 std::vector<double> poi_worth_geo(const CityMetroData& data, RankSource rank, const metro::WorthParams& params);

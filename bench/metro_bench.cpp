@@ -1,75 +1,133 @@
-// Metro map benchmark (paper 5.5): for every shared city, through the API's metro service (the
-// real code path: store -> catalog -> visual worth -> layout -> warp -> clusters):
-//   1. stations, edges, POIs; time by stage (visual worth, fast layout, MIP polish, warp,
-//      cluster tree); the MIP's status and gap; the quality report; for the default request
-//      (visual-worth lengths, solver auto) and for the fast path alone;
-//   2. the largest network (London) with each solver;
-//   3. active cluster queries per city: p50/p99 over random windows (in process).
-// The MIP runs in process here (the server runs it in a child process it can kill).
+// Metro map benchmark (paper 5.5): the chapter-5 pipeline (core/metro/city_layout.hpp: visual
+// worth -> edge lengths -> pre-layout -> octilinear grid routing -> [MIP] -> warping) on every
+// shared network, beside loom/octi. Links tourmap_core only: the networks and POIs come from
+// the core loaders, as scripts/sample-data.json has the sample import read them.
 //
-//   build/bench/metro_bench [--data-dir DIR] [--city ID]   (--city: that city's layouts only)
+// One table: per network, the default request (lengths=visual-worth) and lengths=uniform, both
+// with solver=fast (the default request's path once the MIP runs in the background); --mip
+// adds both with solver=mip (CBC in this process, for the rest of the time limit). Bends,
+// displacement, min/mean edge, octilinear share and edges kept are metro_compare.py's
+// definitions (core/metro/layout_metrics.hpp), so they stand beside octi's figures from
+// ../shared/tools/README.md; min gap, added crossings and order violations are tourmap's
+// quality report (core/metro/layout_quality.hpp). Times: the layout computation in this
+// process (one run, first computation); octi's: its whole process (median of 3).
+//
+//   build/bench/metro_bench [--data-dir DIR] [--city ID] [--mip] [--time-limit S]
+//                           [--write-layouts DIR]   (or TOURMAP_BENCH_LAYOUTS=DIR)
+// --write-layouts writes each layout as DIR/<network>-<request>.json (stations and edges in the
+// API's frame, the fields metro_compare.py reads), to check the figures:
+//   python3 ../shared/tools/metro_compare.py measure ../shared/data/metro/loom_wien.json DIR/vienna-default.json
 
-#include "api/catalog.hpp"
-#include "api/metro_service.hpp"
 #include "load/file.hpp"
-#include "store/manifest.hpp"
-#include "store/migrate.hpp"
+#include "load/metro_load.hpp"
+#include "load/poi_load.hpp"
+#include "metro/city_layout.hpp"
+#include "metro/layout_metrics.hpp"
 
-#include <algorithm>
-#include <chrono>
+#include <nlohmann/json.hpp>
+
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <random>
-#include <unistd.h>
+#include <fstream>
+#include <string>
+#include <vector>
 
 namespace {
 
 using namespace tourmap;
-using Clock = std::chrono::steady_clock;
 
-double ms_since(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
-double percentile(std::vector<double> v, double q) {
-  std::sort(v.begin(), v.end());
-  return v.empty() ? 0.0 : v[std::min(v.size() - 1, static_cast<std::size_t>(q * v.size()))];
+// loom/octi (default heuristic) measured with metro_compare.py: ../shared/tools/README.md,
+// "Reference: loom/octi", loom commit 1e47578, same 2-core machine, whole process, median of 3.
+struct Reference {
+  const char* network;   // the sample import's city id
+  const char* tool_input;  // metro_compare.py's INPUT for this network (under the data dir)
+  double octi_s;
+  int octi_bends;
+  double octi_min_mean_edge;
+  double octi_displacement_pct;
+};
+constexpr Reference kNetworks[] = {
+    {"freiburg", "metro/loom_freiburg.json", 0.07, 10, 0.718, 2.84},
+    {"vienna", "metro/loom_wien.json", 0.11, 16, 0.491, 3.22},
+    {"chicago", "metro/loom_chicago.json", 0.31, 14, 0.230, 3.10},
+    {"berlin", "metro/loom_berlin.json", 0.20, 20, 0.595, 2.30},
+    {"sydney", "metro/loom_sydney.json", 0.16, 23, 0.458, 2.23},
+    {"stuttgart", "metro/loom_stuttgart.json", 0.24, 23, 0.475, 2.58},
+    {"london", "metro/london.loom.json", 12.31, 62, 0.183, 2.29},
+};
+
+struct City {
+  model::MetroNetwork net;
+  std::vector<model::Poi> pois;
+};
+
+// The city as the sample import has it: its manifest entry's metro files and POIs.
+City load_city(const nlohmann::json& entry, const std::string& data_dir) {
+  City c;
+  const auto& metro = entry.at("metro");
+  std::vector<std::string> files;
+  for (const auto& f : metro.at("files")) files.push_back(data_dir + "/" + f.get<std::string>());
+  const auto format = metro.at("format").get<std::string>();
+  if (format == "loom") c.net = load::load_metro_loom(files.at(0));
+  else if (format == "station-csvs") c.net = load::load_metro_station_csvs(files.at(0), files.at(1), files.at(2));
+  else c.net = load::load_metro_line_csv(files.at(0));
+  if (entry.contains("pois"))
+    c.pois = load::load_pois(data_dir + "/" + entry["pois"].at("file").get<std::string>(),
+                             {entry["pois"].value("category", "")});
+  return c;
 }
 
-nlohmann::json layout(api::MetroService& metro, const std::string& city, const std::string& query, double* wall_ms) {
-  api::Request req;
-  req.method = "GET";
-  req.params["id"] = city;
-  std::size_t start = 0;
-  while (start < query.size()) {
-    auto amp = query.find('&', start);
-    auto pair = query.substr(start, amp == std::string::npos ? std::string::npos : amp - start);
-    auto eq = pair.find('=');
-    req.query[pair.substr(0, eq)] = pair.substr(eq + 1);
-    if (amp == std::string::npos) break;
-    start = amp + 1;
+// The layout in the API's frame (metres): what the API's answer draws.
+metro::Layout in_frame(const metro::CityLayoutResult& r) {
+  metro::Layout out;
+  out.pos = r.frame.nodes;
+  for (const auto& path : r.layout.paths) {
+    out.paths.emplace_back();
+    for (const auto& p : path) out.paths.back().push_back(r.frame.frame.apply(p));
   }
-  auto t = Clock::now();
-  auto resp = metro.layout(req, false);
-  *wall_ms = ms_since(t);
-  return nlohmann::json::parse(resp.body);
+  return out;
 }
 
-void row(const std::string& city, const nlohmann::json& l, double wall, double cluster_ms) {
-  const auto& q = l["quality"];
-  const auto& s = l["solver"];
-  const auto& mip = s.contains("mip") ? s["mip"] : nlohmann::json::object();
-  std::string mip_text = mip.empty() ? "-"
-                                     : mip["status"].get<std::string>() +
-                                           (mip.contains("accepted") ? (mip["accepted"].get<bool>() ? ", kept" : ", not kept") : "") +
-                                           (mip.contains("gap") ? ", gap " + std::to_string(mip["gap"].get<double>()).substr(0, 5) : "");
-  std::printf("| %s | %zu | %zu | %zu | %.1f | %.1f (%.0f) | %s | %.1f | %.1f | %.1f | %s | %.0f%% | %d (%d, %d) | %d | %d | %.1f / %.1f |\n",
-              city.c_str(), l["stations"]["features"].size(), l["edges"]["features"].size(), l["pois"]["features"].size(),
-              l["timing_ms"]["visual_worth"].get<double>(), l["fast_path"]["time_ms"].get<double>(),
-              l["fast_path"]["prelayout_ms"].get<double>(), mip_text.c_str(),
-              mip.contains("time_ms") ? mip["time_ms"].get<double>() : 0.0, l["timing_ms"]["warp"].get<double>(), cluster_ms,
-              (s["kind"].get<std::string>() + " " + s["status"].get<std::string>()).c_str(),
-              100 * q["octilinear_share"].get<double>(), q["crossings"].get<int>(), q["geo_crossings"].get<int>(), q["added_crossings"].get<int>(),
-              q["order_violations"].get<int>(), q["bends"].get<int>(), q["min_edge"].get<double>(), q["mean_edge"].get<double>());
-  (void)wall;
+// The fields of the API's answer that metro_compare.py reads (read_tourmap).
+void write_layout(const std::string& path, const model::MetroNetwork& net, const metro::Layout& L) {
+  auto xy = [](metro::XY p) { return nlohmann::json::array({p.x, p.y}); };
+  auto lines = [&](const std::vector<std::uint32_t>& idx) {
+    nlohmann::json ids = nlohmann::json::array();
+    for (auto l : idx) ids.push_back(net.lines[l].id);
+    return ids;
+  };
+  nlohmann::json stations = nlohmann::json::array(), edges = nlohmann::json::array();
+  for (std::size_t v = 0; v < net.nodes.size(); ++v) {
+    const auto& n = net.nodes[v];
+    if (!n.is_station()) continue;
+    stations.push_back({{"type", "Feature"},
+                        {"id", n.id},
+                        {"geometry", {{"type", "Point"}, {"coordinates", xy(L.pos[v])}}},
+                        {"properties", {{"id", n.id}, {"station_id", n.station_id}, {"name", n.name}}}});
+  }
+  for (std::size_t e = 0; e < net.edges.size(); ++e) {
+    nlohmann::json coords = nlohmann::json::array();
+    for (const auto& p : L.paths[e]) coords.push_back(xy(p));
+    edges.push_back({{"type", "Feature"},
+                     {"geometry", {{"type", "LineString"}, {"coordinates", std::move(coords)}}},
+                     {"properties", {{"from", net.nodes[net.edges[e].from].id},
+                                     {"to", net.nodes[net.edges[e].to].id},
+                                     {"lines", lines(net.edges[e].lines)}}}});
+  }
+  nlohmann::json doc = {{"stations", {{"type", "FeatureCollection"}, {"features", std::move(stations)}}},
+                        {"edges", {{"type", "FeatureCollection"}, {"features", std::move(edges)}}}};
+  std::ofstream(path) << doc.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) << '\n';
+}
+
+// "fast ok", or the MIP's status and whether its layout was kept (else why not).
+std::string solver_text(const metro::SolverReport& s) {
+  std::string out;
+  if (!s.mip) return out.append(s.kind).append(" ").append(s.status);
+  out.append("MIP ").append(s.mip->status);
+  if (s.mip->accepted) out.append(", kept");
+  else if (!s.mip->reason.empty()) out.append(", not kept: ").append(s.mip->reason);
+  return out;
 }
 
 }  // namespace
@@ -77,117 +135,87 @@ void row(const std::string& city, const nlohmann::json& l, double wall, double c
 int main(int argc, char** argv) {
   std::string data_dir = TOURMAP_DEFAULT_DATA_DIR;
   if (const char* env = std::getenv("TOURMAP_DATA_DIR")) data_dir = env;
-  std::string only_city;
-  for (int i = 1; i + 1 < argc; ++i) {
-    if (std::string(argv[i]) == "--data-dir") data_dir = argv[i + 1];
-    if (std::string(argv[i]) == "--city") only_city = argv[i + 1];
+  std::string only_city, layouts_dir;
+  if (const char* env = std::getenv("TOURMAP_BENCH_LAYOUTS")) layouts_dir = env;
+  bool with_mip = false;
+  double time_limit_s = 10.0;
+  for (int i = 1; i < argc; ++i) {
+    std::string arg = argv[i];
+    bool has_value = i + 1 < argc;
+    if (arg == "--mip") with_mip = true;
+    else if (arg == "--data-dir" && has_value) data_dir = argv[++i];
+    else if (arg == "--city" && has_value) only_city = argv[++i];
+    else if (arg == "--time-limit" && has_value) time_limit_s = std::stod(argv[++i]);
+    else if (arg == "--write-layouts" && has_value) layouts_dir = argv[++i];
+    else {
+      std::fprintf(stderr, "usage: metro_bench [--data-dir DIR] [--city ID] [--mip] [--time-limit S] [--write-layouts DIR]\n");
+      return 2;
+    }
   }
+  if (!layouts_dir.empty()) std::filesystem::create_directories(layouts_dir);
+  auto manifest = nlohmann::json::parse(load::read_file(TOURMAP_MANIFEST));
 
-  auto dir = std::filesystem::temp_directory_path() / ("tourmap-metro-bench-" + std::to_string(getpid()));
-  std::filesystem::create_directories(dir);
-  auto db_path = (dir / "bench.db").string();
-  auto manifest = store::parse_manifest(load::read_file(TOURMAP_MANIFEST), data_dir);
-  manifest.roads.clear();
-  {
-    store::Db db(db_path);
-    store::migrate(db);
-    store::run_manifest(db, manifest, false, nullptr);
-  }
-  store::DbPool pool(db_path);
-  api::Catalog catalog(pool);
-  // Every section measures computations, not the store's result cache.
-  auto purge = [&] {
-    auto db = pool.acquire();
-    store::cache_purge(*db);
+  struct Request {
+    const char* name;
+    bool worth_lengths;
+    metro::LayoutSolver solver;
   };
+  std::vector<Request> requests = {{"default", true, metro::LayoutSolver::fast}, {"uniform", false, metro::LayoutSolver::fast}};
+  if (with_mip) {
+    requests.push_back({"default+mip", true, metro::LayoutSolver::mip});
+    requests.push_back({"uniform+mip", false, metro::LayoutSolver::mip});
+  }
 
-  std::printf("# tourmap metro benchmark\n\nLayout units: l_const = 10. Times in ms, one run each on this machine "
-              "(first computation; the service caches results). MIP: CBC in process.\n");
-  for (std::string query : {std::string("lengths=visual-worth&solver=auto"), std::string("lengths=visual-worth&solver=fast")}) {
-    purge();
-    api::MetroService metro(catalog);  // fresh caches
-    std::printf("\n### Layout per city: %s\n\n", query.c_str());
-    std::printf("| city | stations | edges | POIs | visual worth | fast layout (pre-layout) | MIP | MIP ms | warp | cluster tree | result | octilinear | crossings (geo, added) | order violations | bends | min / mean edge |\n");
-    std::printf("|---|---:|---:|---:|---:|---:|---|---:|---:|---:|---|---:|---:|---:|---:|---:|\n");
-    for (const auto& m : manifest.metros) {
-      if (!only_city.empty() && m.city.id != only_city) continue;
-      double wall = 0;
-      auto l = layout(metro, m.city.id, query, &wall);
-      // The layout-space cluster tree: built on the first clusters request.
-      double cluster_ms = 0;
-      if (!l["pois"]["features"].empty()) {
-        api::Request req;
-        req.params["id"] = m.city.id;
-        req.query = {{"space", "layout"}, {"bbox", "-1e9,-1e9,1e9,1e9"}};
-        auto eq = query.find('&');
-        req.query["lengths"] = query.substr(8, eq - 8);
-        req.query["solver"] = query.substr(query.find("solver=") + 7);
-        auto t = Clock::now();
-        metro.clusters(req);
-        cluster_ms = ms_since(t);
-      }
-      row(m.city.id, l, wall, cluster_ms);
+  std::printf("# tourmap metro layouts beside loom/octi\n\n"
+              "default: lengths=visual-worth, uniform: lengths=uniform; solver=fast (+mip: CBC in process, %.0f s "
+              "limit). Time: the layout in this process, ms; octi's: its whole process. Bends, displacement (RMS over "
+              "the geographic diagonal), min/mean edge, octilinear share (of straight pieces) and input edges kept as "
+              "metro_compare.py defines them; min gap / mean edge, added crossings, order violations: tourmap's "
+              "quality report.\n\n",
+              time_limit_s);
+  std::printf("| network | request | stations | time ms | octi ms | bends | octi | displacement %% | octi | min/mean edge | octi "
+              "| min gap / mean edge | added crossings | order violations | input edges kept | octilinear %% | solver |\n");
+  std::printf("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|---|\n");
+  for (const auto& ref : kNetworks) {
+    if (!only_city.empty() && only_city != ref.network) continue;
+    const nlohmann::json* entry = nullptr;
+    for (const auto& c : manifest.at("cities"))
+      if (c.at("id") == ref.network) entry = &c;
+    if (!entry) {
+      std::fprintf(stderr, "%s: not in the manifest\n", ref.network);
+      continue;
+    }
+    auto city = load_city(*entry, data_dir);
+    // As the API derives it once per city version: the store's projection (centred on the
+    // network's bbox), POI proximity to stations.
+    auto in = metro::make_city_metro_input(city.net, city.pois, geo::projection_for(model::bbox_of(city.net)));
+    std::vector<bool> is_station;
+    for (const auto& n : city.net.nodes) is_station.push_back(n.is_station());
+    for (const auto& req : requests) {
+      metro::CityLayoutParams params;
+      params.worth_lengths = req.worth_lengths;
+      params.solver = req.solver;
+      params.time_limit_s = time_limit_s;
+      params.mip = [](const metro::MipModel& m, double t, double gap) { return metro::solve_with_cbc(m, t, gap); };
+      auto r = metro::layout_city(in, city.pois, params);
+      auto drawn = in_frame(r);
+      auto m = metro::metro_compare_metrics(in.graph, is_station, drawn);
+      const auto& q = r.quality;
+      std::printf("| %s | %s | %zu | %.0f | %.0f | %zu | %d | %.2f | %.2f | %.3f | %.3f | %.3f | %zu | %zu | %zu/%zu | %.1f | %s |\n",
+                  ref.network, req.name, in.station_count, r.timing.total, ref.octi_s * 1000, m.bends, ref.octi_bends,
+                  100 * m.displacement, ref.octi_displacement_pct, m.min_over_mean_edge, ref.octi_min_mean_edge,
+                  q.min_station_gap_ratio, q.added_crossings, q.order_violations, m.edges_kept, m.edges,
+                  100 * m.octilinear_share, solver_text(r.solver).c_str());
+      std::fflush(stdout);
+      if (!layouts_dir.empty()) write_layout(layouts_dir + "/" + ref.network + "-" + req.name + ".json", city.net, drawn);
     }
   }
-
-  if (!only_city.empty() && only_city != "london") {
-    std::filesystem::remove_all(dir);
-    return 0;
+  if (!layouts_dir.empty()) {
+    std::printf("\nLayouts written; check one with metro_compare.py:\n\n");
+    for (const auto& ref : kNetworks)
+      if (only_city.empty() || only_city == ref.network)
+        std::printf("    python3 ../shared/tools/metro_compare.py measure %s/%s %s/%s-default.json\n", data_dir.c_str(),
+                    ref.tool_input, layouts_dir.c_str(), ref.network);
   }
-  std::printf("\n### The largest network: London (302 stations) by solver\n\n");
-  std::printf("| solver | total ms | result | MIP | octilinear | crossings (geo, added) | order violations | bends | fast path ripups / crossing routes / overlapping / attempt |\n");
-  std::printf("|---|---:|---|---|---:|---:|---:|---:|---:|\n");
-  for (std::string solver : {"fast", "auto", "mip"}) {
-    purge();
-    api::MetroService metro(catalog);
-    double wall = 0;
-    auto l = layout(metro, "london", "solver=" + solver + "&time_limit_s=10", &wall);
-    const auto& q = l["quality"];
-    std::string mip = l["solver"].contains("mip") ? l["solver"]["mip"].value("status", "") + " " +
-                                                        l["solver"]["mip"].value("reason", "")
-                                                  : "-";
-    std::printf("| %s | %.0f | %s %s | %s | %.0f%% | %d (%d, %d) | %d | %d | %d / %d / %d / %d |\n", solver.c_str(), wall,
-                l["solver"]["kind"].get<std::string>().c_str(), l["solver"]["status"].get<std::string>().c_str(), mip.c_str(),
-                100 * q["octilinear_share"].get<double>(), q["crossings"].get<int>(), q["geo_crossings"].get<int>(), q["added_crossings"].get<int>(),
-                q["order_violations"].get<int>(), q["bends"].get<int>(), l["fast_path"]["ripups"].get<int>(),
-                l["fast_path"]["crossing_routes"].get<int>(), l["fast_path"]["overlapping"].get<int>(),
-                l["fast_path"]["attempt"].get<int>());
-  }
-
-  if (!only_city.empty()) {
-    std::filesystem::remove_all(dir);
-    return 0;
-  }
-  std::printf("\n### Active cluster queries (geo space, in process, 2000 random windows per city)\n\n");
-  std::printf("| city | POIs | tree build ms | p50 ms | p99 ms | max ms |\n|---|---:|---:|---:|---:|---:|\n");
-  purge();
-  api::MetroService metro(catalog);
-  std::mt19937 rng(11);
-  for (const auto& p : manifest.pois) {
-    auto city = catalog.city(p.city_id);
-    auto box = city->info.poi_bbox;
-    api::Request first;
-    first.params["id"] = p.city_id;
-    auto t = Clock::now();
-    metro.clusters(first);
-    double build = ms_since(t);
-    std::vector<double> times;
-    std::uniform_real_distribution<double> u(0, 1), size(0.02, 1.0);
-    for (int i = 0; i < 2000; ++i) {
-      double w = size(rng) * (box.max_lon - box.min_lon), h = w * 0.6;
-      double x = box.min_lon + u(rng) * (box.max_lon - box.min_lon - w), y = box.min_lat + u(rng) * std::max(0.0, box.max_lat - box.min_lat - h);
-      api::Request req;
-      req.params["id"] = p.city_id;
-      char bbox[128];
-      std::snprintf(bbox, sizeof bbox, "%.6f,%.6f,%.6f,%.6f", x, y, x + w, y + h);
-      req.query["bbox"] = bbox;
-      auto q0 = Clock::now();
-      metro.clusters(req);
-      times.push_back(ms_since(q0));
-    }
-    std::printf("| %s | %zu | %.1f | %.3f | %.3f | %.3f |\n", p.city_id.c_str(), city->pois.size(), build,
-                percentile(times, 0.5), percentile(times, 0.99), *std::max_element(times.begin(), times.end()));
-  }
-  std::filesystem::remove_all(dir);
   return 0;
 }

@@ -1,5 +1,6 @@
 #include "metro/layout_quality.hpp"
 
+#include "metro/station_gap.hpp"
 #include "metro/warp.hpp"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -173,6 +174,8 @@ LayoutQuality measure_layout(const LayoutGraph& g, const Layout& L) {
     sum += std::hypot(p.x - L.pos[v].x, p.y - L.pos[v].y);
   }
   q.mean_displacement = n && q.mean_edge > 0 ? sum / n / q.mean_edge : 0;
+  q.min_station_gap = min_station_gap(g, L);
+  q.min_station_gap_ratio = q.mean_edge > 0 ? q.min_station_gap / q.mean_edge : 0;
   return q;
 }
 

@@ -15,6 +15,10 @@ struct LayoutQuality {
   double min_edge = 0, mean_edge = 0;  // path lengths, layout units
   double mean_displacement = 0;      // mean station offset from the Helmert-aligned geography,
                                      // in mean edge lengths
+  double min_station_gap = 0;        // smallest node-node (not joined by an edge) or node-path (of
+                                     // an edge not ending there) distance, layout units
+                                     // (metro/station_gap.hpp); +infinity without such a pair
+  double min_station_gap_ratio = 0;  // min_station_gap / mean_edge
 };
 
 LayoutQuality measure_layout(const LayoutGraph& g, const Layout& layout);

@@ -4,6 +4,7 @@
 // the root LP), and the CBC solve itself.
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -40,6 +41,10 @@ MipResult deserialize_result(std::string_view bytes);
 
 // Solves in this process with CBC (time limit and relative gap; the start is passed on).
 MipResult solve_with_cbc(const MipModel& m, double time_limit_s, double relative_gap);
+
+// How a caller has a MIP solved: solve_with_cbc in this process (tests, benchmarks), or in a
+// child process it can kill at the deadline (the server, api/mip_runner.hpp).
+using MipSolveFn = std::function<MipResult(const MipModel& m, double time_limit_s, double relative_gap)>;
 
 // Largest violation of bounds, rows and integrality by `x` (0 for a feasible solution).
 double max_violation(const MipModel& m, const std::vector<double>& x);

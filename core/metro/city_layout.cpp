@@ -1,0 +1,94 @@
+#include "metro/city_layout.hpp"
+
+#include "metro/bend_reduction.hpp"
+#include "metro/prelayout.hpp"
+#include "util/elapsed.hpp"
+
+#include <algorithm>
+#include <optional>
+
+namespace tourmap::metro {
+namespace {
+
+using util::Clock;
+using util::ms_since;
+
+// The MIP's time budget in seconds (see the header for the policy); none: no MIP.
+std::optional<double> mip_budget(const CityLayoutParams& p, std::size_t stations, double fast_ms) {
+  bool want = p.mip && (p.solver == LayoutSolver::mip ||
+                        (p.solver == LayoutSolver::automatic && stations <= kAutoMipStations));
+  if (!want) return std::nullopt;
+  double left_s = p.time_limit_s - fast_ms / 1000.0;
+  double budget = p.solver == LayoutSolver::mip ? left_s : std::min(0.5, 0.1 * p.time_limit_s);
+  return std::min(budget, left_s);
+}
+
+}  // namespace
+
+CityLayoutResult layout_city(const CityMetroInput& in, const std::vector<model::Poi>& pois,
+                             const CityLayoutParams& params) {
+  auto started = Clock::now();
+  CityLayoutResult out;
+
+  // 1. Visual worth (5.4.1, eq. 5.1) at every node and POI: one batched evaluation.
+  auto t = Clock::now();
+  auto vw = make_visual_worth(in, pois, params.rank, params.worth);
+  std::vector<XY> worth_points(in.graph.pos);
+  worth_points.insert(worth_points.end(), in.poi_xy.begin(), in.poi_xy.end());
+  auto worth = vw.at_points(worth_points);
+  const auto nodes_end = worth.begin() + static_cast<std::ptrdiff_t>(in.graph.pos.size());
+  out.node_worth.assign(worth.begin(), nodes_end);
+  out.poi_worth.assign(nodes_end, worth.end());
+  out.timing.visual_worth = ms_since(t);
+
+  // 2. Octilinear layout (5.4.2) with edge lengths from visual worth (eq. 5.3, 5.4) or uniform.
+  t = Clock::now();
+  auto g = in.graph;
+  g.min_length = params.worth_lengths ? visual_worth_lengths(g, out.node_worth, params.l_const)
+                                      : std::vector<double>(g.edges.size(), params.l_const);
+  auto start = stress_layout(g, scale_to_lengths(g));
+  out.timing.prelayout = ms_since(t);
+  GridRouteParams route;
+  route.time_limit_ms = params.time_limit_s * 1000.0;
+  auto layout = route_octilinear(g, start, route, &out.route);
+
+  // Fewer bends along the lines (same stations and edges, same topology), before the fast
+  // layout is measured and handed to the MIP as its start. Its time: a small share of the
+  // default request's budget (0.3 s under 200 stations, 2 s above; see docs/metro-layout.md).
+  BendReductionParams bends;
+  bends.time_limit_ms = std::min(g.pos.size() < 200 ? 100.0 : 500.0, 0.25 * params.time_limit_s * 1000.0);
+  reduce_bends(g, layout, bends, &out.bends);
+
+  out.quality = measure_layout(g, layout);
+  out.timing.fast = ms_since(t);
+  out.solver.status = layout.status;
+
+  // Optional MIP polish (see the header for the policy).
+  auto budget = mip_budget(params, in.station_count, out.timing.fast);
+  if (budget && *budget < 0.2) {
+    MipReport skipped;
+    skipped.status = "skipped";
+    skipped.reason = "no time left";
+    out.solver.mip = std::move(skipped);
+  } else if (budget) {
+    out.solver.mip = polish_with_mip(g, layout, out.quality, params.l_const, *budget, params.mip);
+    if (out.solver.mip->accepted) {
+      out.solver.kind = "mip";
+      out.solver.status = layout.status;
+      out.solver.gap = out.solver.mip->gap;
+    }
+  }
+  out.timing.layout = ms_since(t);
+
+  // 3. Into the geographic frame, and warping (5.4.3) of POIs, outline and mesh.
+  t = Clock::now();
+  out.frame = frame_city(g.pos, layout, in.poi_xy);
+  out.timing.warp = ms_since(t);
+
+  out.layout = std::move(layout);
+  out.min_length = std::move(g.min_length);
+  out.timing.total = ms_since(started);
+  return out;
+}
+
+}  // namespace tourmap::metro

@@ -1,0 +1,66 @@
+#pragma once
+// A city's transit-centric tourist map (paper 5.4), as one computation on plain structs:
+// visual worth (5.4.1) -> edge lengths (eq. 5.3, 5.4) -> stress pre-layout -> octilinear grid
+// routing (5.4.2) -> optional MIP polish -> frame, and POIs, mesh and outline warped into the
+// layout (5.4.3), with the quality report. No JSON, no I/O: api/metro_layout.cpp writes the
+// answer, bench/metro_bench.cpp measures it.
+
+#include "metro/bend_reduction.hpp"
+#include "metro/city_frame.hpp"
+#include "metro/city_input.hpp"
+#include "metro/layout_quality.hpp"
+#include "metro/mip_polish.hpp"
+#include "metro/octilinear_grid.hpp"
+
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace tourmap::metro {
+
+// Solvers: "fast" is the grid routing alone; "mip" polishes it with the octilinear MIP for the
+// rest of the time limit; "automatic" routes, then polishes networks of up to
+// kAutoMipStations stations for a tenth of the time limit, at most 0.5 s.
+enum class LayoutSolver { automatic, fast, mip };  // the order is in stored layouts' cache keys
+inline constexpr std::size_t kAutoMipStations = 250;
+
+struct CityLayoutParams {
+  bool worth_lengths = true;  // visual-worth lengths (eq. 5.4), else uniform l_const (the paper's DF4)
+  double l_const = 10.0;
+  RankSource rank = RankSource::automatic;
+  WorthParams worth;
+  LayoutSolver solver = LayoutSolver::automatic;
+  double time_limit_s = 10.0;
+  MipSolveFn mip;  // needed when the MIP may run; empty: no MIP (as "fast")
+};
+
+struct SolverReport {
+  std::string kind = "fast";    // whose layout it is: "fast" or "mip"
+  std::string status;           // that solver's status
+  std::optional<double> gap;    // the MIP's relative gap (kind "mip")
+  std::optional<MipReport> mip;  // when the MIP was considered
+};
+
+struct CityLayoutTimings {  // ms
+  double visual_worth = 0, prelayout = 0, fast = 0, layout = 0, warp = 0, total = 0;
+};
+
+struct CityLayoutResult {
+  Layout layout;                     // layout units; layout.status is the result's status
+  std::vector<double> min_length;    // per edge, layout units (eq. 5.4)
+  CityFrame frame;                   // layout -> metres; POIs, mesh and outline warped
+  std::vector<double> node_worth;    // vw per node (raw eq. 5.1)
+  std::vector<double> poi_worth;     // vw per POI (raw eq. 5.1)
+  LayoutQuality quality;
+  GridRouteReport route;
+  BendReductionReport bends;
+  SolverReport solver;
+  CityLayoutTimings timing;
+};
+
+// Throws std::invalid_argument when params.rank is `data` and no POI has a rank. `pois` are
+// the POIs `in` was made from (their prominence gives the ranks).
+CityLayoutResult layout_city(const CityMetroInput& in, const std::vector<model::Poi>& pois,
+                             const CityLayoutParams& params);
+
+}  // namespace tourmap::metro
