@@ -10,9 +10,14 @@
 #include "util/elapsed.hpp"
 #include "util/stop.hpp"
 
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <string_view>
 
 namespace tourmap::api {
 namespace {
@@ -90,7 +95,149 @@ void append_optional_field(std::string& out, const char* key, const std::string&
   append_string(out, value);
 }
 
+// Every layout answer says in solver.improvement whether a better one may follow:
+// "scheduled" (a background MIP is queued or running; a layout_improved event follows if it
+// wins), "none" (nothing follows), "applied" (this is the improved layout). A cached default
+// layout without the field has not been decided yet: it is scheduled when served.
+//
+// The field is written as text right after `"solver":{` rather than by parsing and writing
+// the whole body again (hundreds of KB, on every answer while an improvement is pending): the
+// body is compact JSON, `solver` is a key of its top-level object only, and inside strings a
+// quote is escaped, so the pattern matches nothing else.
+constexpr std::string_view kSolverObject = "\"solver\":{";
+constexpr std::string_view kImprovementField = "\"improvement\":\"";
+
+// Where the solver object's members start, or npos.
+std::size_t solver_members(const std::string& body) {
+  const auto at = body.find(kSolverObject);
+  return at == std::string::npos ? at : at + kSolverObject.size();
+}
+
+// The body's improvement state; empty when it has none.
+std::string_view improvement_of(const std::string& body) {
+  const auto at = solver_members(body);
+  if (at == std::string::npos) return {};
+  std::string_view rest(body);
+  rest.remove_prefix(at);
+  if (!rest.starts_with(kImprovementField)) return {};
+  rest.remove_prefix(kImprovementField.size());
+  return rest.substr(0, rest.find('"'));
+}
+
+// The body with solver.improvement set to `state` (replacing the one it has). A body without
+// a solver object (none is made so) is returned as it is.
+std::string with_improvement(const std::string& body, std::string_view state) {
+  auto at = solver_members(body);
+  if (at == std::string::npos) return body;
+  auto rest = at;
+  if (std::string_view(body).substr(at).starts_with(kImprovementField)) {
+    const auto quote = body.find('"', at + kImprovementField.size());  // the old value's end
+    if (quote == std::string::npos) return body;
+    rest = quote + 1;
+    if (rest < body.size() && body[rest] == ',') ++rest;
+  }
+  std::string out;
+  out.reserve(body.size() + 32);
+  out.append(body, 0, at).append(kImprovementField).append(state).append("\"");
+  if (body[rest] != '}') out += ',';
+  out.append(body, rest, std::string::npos);
+  return out;
+}
+
+std::shared_ptr<const CityLayout> with_body(const CityLayout& layout, std::string body) {
+  auto copy = std::make_shared<CityLayout>(layout);
+  copy->body = std::move(body);
+  return copy;
+}
+
+// The cache key of a layout (memory and store).
+std::string layout_key(const CityMetroData& data, const LayoutRequest& req) {
+  return "layout:" + data.key + ":" + req.canonical();
+}
+
 }  // namespace
+
+// ---- LayoutImprover: the background queue ----
+
+LayoutImprover::Admission LayoutImprover::push(const std::string& key, Job job) {
+  {
+    std::lock_guard lock(mutex_);
+    if (stop_) return Admission::refused;
+    if (running_ == key) return Admission::pending;
+    if (std::any_of(queue_.begin(), queue_.end(), [&](const auto& queued) { return queued.first == key; }))
+      return Admission::pending;
+    if (queue_.size() >= max_queue_) {  // the oldest waits longest: newer requests are what is looked at now
+      queue_.pop_front();
+      ++dropped_;
+    }
+    queue_.emplace_back(key, std::move(job));
+    if (!thread_.joinable()) {
+      try {
+        thread_ = std::thread([this] { work(); });
+      } catch (const std::system_error&) {  // no thread to be had: nothing runs, the answer says so
+        queue_.pop_back();
+        return Admission::refused;
+      }
+    }
+  }
+  wake_.notify_one();
+  return Admission::queued;
+}
+
+void LayoutImprover::request_stop() {
+  {
+    std::lock_guard lock(mutex_);
+    stop_ = true;
+    queue_.clear();
+  }
+  wake_.notify_all();
+}
+
+void LayoutImprover::stop() {
+  request_stop();
+  std::thread worker;
+  {
+    std::lock_guard lock(mutex_);
+    worker = std::move(thread_);
+  }
+  if (worker.joinable()) worker.join();
+}
+
+LayoutImprover::Stats LayoutImprover::stats() const {
+  std::lock_guard lock(mutex_);
+  return {queue_.size(), running_.empty() ? 0u : 1u, dropped_, failed_};
+}
+
+void LayoutImprover::work() {
+  // Below the request threads: on 2 cores a background MIP must not slow foreground answers.
+  // Linux keeps nice values per thread, and the CBC child spawned from here inherits it. A
+  // failure leaves the thread at the normal priority, which is still one core at most.
+  (void)setpriority(PRIO_PROCESS, static_cast<id_t>(gettid()), 10);
+  std::unique_lock lock(mutex_);
+  for (;;) {
+    wake_.wait(lock, [this] { return stop_ || !queue_.empty(); });
+    if (stop_) return;
+    auto [key, job] = std::move(queue_.front());
+    queue_.pop_front();
+    running_ = key;
+    lock.unlock();
+    bool failed = false;
+    try {
+      job(stop_);
+    } catch (const util::Stopped&) {  // shutdown (or the job's own deadline): nothing to keep
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "layout improvement %s failed: %s\n", key.c_str(), e.what());
+      failed = true;
+    } catch (...) {
+      std::fprintf(stderr, "layout improvement %s failed\n", key.c_str());
+      failed = true;
+    }
+    job = nullptr;  // its captures (a city's data) go now, not when the next job comes
+    lock.lock();
+    running_.clear();
+    if (failed) ++failed_;
+  }
+}
 
 // The cluster objects of a clusters answer, written straight into the body (json_out.hpp):
 // building them as nlohmann::json trees and dumping them took a third of the request's time.
@@ -163,16 +310,26 @@ std::size_t bytes_of(const poi::ClusterTree& t) { return sizeof(t) + bytes_of(t.
 
 }  // namespace
 
-MetroService::MetroService(Catalog& catalog, MipSolver mip, MetroLimits limits)
+MetroService::MetroService(Catalog& catalog, MipSolver mip, MetroLimits limits, MipSolver improve_mip)
     : catalog_(catalog),
       mip_(std::move(mip)),
+      improve_mip_(std::move(improve_mip)),
       limits_(limits),
       data_(limits.data_cache_bytes),
       layouts_(limits.layout_cache_bytes),
       trees_(limits.tree_cache_bytes),
       geo_worth_(limits.worth_cache_bytes),
-      geo_centers_(limits.worth_cache_bytes) {
+      geo_centers_(limits.worth_cache_bytes),
+      improver_(limits.improve_queue) {
   if (!mip_) mip_ = [](const metro::MipModel& m, double t, double gap) { return metro::solve_with_cbc(m, t, gap); };
+  if (!improve_mip_) improve_mip_ = mip_;
+}
+
+// The improver's thread uses the caches and the event sink: it stops before they go.
+MetroService::~MetroService() { improver_.stop(); }
+
+MetroService::ImprovementStats MetroService::improvement_stats() const {
+  return {improver_.stats(), scheduled_.load(), improved_.load(), not_improved_.load(), stale_.load()};
 }
 
 std::shared_ptr<const CityMetroData> MetroService::data_for(const std::string& city_id) {
@@ -193,7 +350,7 @@ std::shared_ptr<const CityLayout> MetroService::layout_for(const CityMetroData& 
                    "id: the network has " + std::to_string(data.graph.edges.size()) +
                        " edges; layouts are made for at most " + std::to_string(limits_.max_layout_edges),
                    "id");
-  auto key = "layout:" + data.key + ":" + req.canonical();
+  const auto key = layout_key(data, req);
   *cached = true;
   if (auto hit = layouts_.get(key)) return *hit;
   bool ran = false;
@@ -202,7 +359,7 @@ std::shared_ptr<const CityLayout> MetroService::layout_for(const CityMetroData& 
       [&]() -> std::shared_ptr<const CityLayout> {
         auto db = catalog_.pool().acquire();
         if (auto stored = store::cache_get(*db, key)) return layout_from_body(std::move(stored->body));
-        auto computed = compute_city_layout(data, req, mip_);
+        auto computed = compute_layout(data, req);
         store::cache_put(*db, key, "layout", {"application/json", computed->body});
         *cached = false;
         return computed;
@@ -236,6 +393,129 @@ std::shared_ptr<const poi::ClusterTree> MetroService::tree_for(const std::string
   return tree;
 }
 
+namespace {
+
+// Networks the default request polishes with the MIP (in the background): the policy the
+// synchronous auto polish had (api/metro_layout.hpp); larger ones are answered fast only.
+bool improvable(const CityMetroData& data) { return data.city->info.station_count <= kAutoMipStations; }
+
+}  // namespace
+
+// What is computed for a request. A default (solver=auto) one is the fast layout alone: the
+// MIP would keep the request waiting for up to a second or more, so it runs afterwards in the
+// background (automatic_answer). Every other answer says that no improvement follows.
+std::shared_ptr<const CityLayout> MetroService::compute_layout(const CityMetroData& data, const LayoutRequest& req) {
+  if (req.solver == LayoutRequest::Solver::automatic) {
+    LayoutRequest fast = req;
+    fast.solver = LayoutRequest::Solver::fast;
+    auto computed = compute_city_layout(data, fast, mip_);
+    if (improvable(data)) return computed;  // undecided until served
+    return with_body(*computed, with_improvement(computed->body, "none"));
+  }
+  auto computed = compute_city_layout(data, req, mip_);
+  return with_body(*computed, with_improvement(computed->body, "none"));
+}
+
+// A default layout's answer: as cached once decided (improved, or nothing follows);
+// otherwise its improvement is scheduled (deduplicated by key) and the answer says whether it
+// was. The cached body stays undecided until the improvement has run, so a dropped or
+// refused one is scheduled again by a later request.
+std::string MetroService::automatic_answer(const std::shared_ptr<const CityMetroData>& data, const LayoutRequest& req,
+                                           const CityLayout& layout) {
+  if (!improvement_of(layout.body).empty()) return layout.body;
+  const auto admission = improver_.push(layout_key(*data, req),
+                                        [this, data, req](const std::atomic<bool>& stop) { improve(data, req, stop); });
+  if (admission == LayoutImprover::Admission::queued) ++scheduled_;
+  return with_improvement(layout.body, admission == LayoutImprover::Admission::refused ? "none" : "scheduled");
+}
+
+// True while the data is the city's current version: an improvement of an older one is
+// dropped (its key is no longer asked for).
+bool MetroService::current_version(const CityMetroData& data) {
+  auto db = catalog_.pool().acquire();
+  const auto version = store::city_version(*db, data.city->info.id);
+  return version && *version == data.city->info.version;
+}
+
+// A background job (on the improver's thread): the MIP polish of the default layout for
+// `req`, with the same parameters and a CBC limit of MetroLimits::improve_mip_s. When its
+// result is accepted (solver.kind "mip": it lowers the objective without more crossings,
+// order violations or bends) it replaces the cached layout and is announced; otherwise the
+// cached fast layout is marked as final.
+void MetroService::improve(const std::shared_ptr<const CityMetroData>& data, const LayoutRequest& req,
+                           const std::atomic<bool>& stop) {
+  const auto key = layout_key(*data, req);
+  if (auto hit = layouts_.get(key); hit && !improvement_of((*hit)->body).empty()) return;  // decided meanwhile
+  if (!current_version(*data)) {
+    ++stale_;
+    return;
+  }
+  // Bounded: the fast path by the request's own time limit, the MIP by improve_mip_s plus
+  // the solver's grace (MetroLimits); the deadline is a backstop on top of those. `stop` is
+  // set at shutdown: the fast path's loops throw util::Stopped, the CBC child is killed.
+  util::StopToken token;
+  token.cancelled = &stop;
+  token.deadline = util::StopToken::Clock::now() +
+                   std::chrono::duration_cast<util::StopToken::Clock::duration>(
+                       std::chrono::duration<double>(req.time_limit_s + limits_.improve_mip_s + 30.0));
+  util::StopScope scope(token);
+  LayoutRequest polish = req;
+  polish.solver = LayoutRequest::Solver::mip;
+  const double cap = limits_.improve_mip_s;
+  const MipSolver capped = [this, cap](const metro::MipModel& model, double time_limit_s, double gap) {
+    return improve_mip_(model, std::min(time_limit_s, cap), gap);
+  };
+  const auto result = compute_city_layout(*data, polish, capped);
+  const auto doc = nlohmann::json::parse(result->body);
+  util::check_stop();
+  if (!current_version(*data)) {  // re-imported while the MIP ran
+    ++stale_;
+    return;
+  }
+  const auto& solver = doc.at("solver");
+  if (solver.value("kind", "") != "mip") {
+    ++not_improved_;
+    mark_not_improved(key);
+    return;
+  }
+  replace_layout(key, with_body(*result, with_improvement(result->body, "applied")));
+  ++improved_;
+  if (!event_sink_) return;
+  auto params = doc.at("params");
+  params["solver"] = "auto";
+  const nlohmann::json event = {{"type", "layout_improved"},
+                                {"city", data->city->info.id},
+                                {"version", data->city->info.version},
+                                {"key", req.canonical()},
+                                {"params", std::move(params)},
+                                {"solver",
+                                 {{"kind", "mip"}, {"status", solver.at("status")}, {"gap", solver.at("gap")}}},
+                                {"quality", doc.at("quality")}};
+  event_sink_(event.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
+}
+
+// The MIP did not win: the cached fast layout (in memory, else in the store) says that
+// nothing follows, so it is not scheduled again.
+void MetroService::mark_not_improved(const std::string& key) {
+  std::shared_ptr<const CityLayout> current;
+  if (auto hit = layouts_.get(key)) {
+    current = *hit;
+  } else {
+    auto db = catalog_.pool().acquire();
+    if (auto stored = store::cache_get(*db, key)) current = layout_from_body(std::move(stored->body));
+  }
+  if (!current || !improvement_of(current->body).empty()) return;
+  replace_layout(key, with_body(*current, with_improvement(current->body, "none")));
+}
+
+void MetroService::replace_layout(const std::string& key, const std::shared_ptr<const CityLayout>& layout) {
+  {
+    auto db = catalog_.pool().acquire();
+    store::cache_put(*db, key, "layout", {"application/json", layout->body});
+  }
+  layouts_.put(key, layout, bytes_of(*layout));
+}
+
 Response MetroService::layout(const Request& req, bool post) {
   auto params = post ? parse_layout_body(parse_json_body(req)) : parse_layout_query(req);
   auto data = data_for(req.param("id"));
@@ -243,7 +523,7 @@ Response MetroService::layout(const Request& req, bool post) {
   bool cached = false;
   auto layout = layout_for(*data, params, &cached);
   Response r;
-  r.body = layout->body;
+  r.body = params.solver == LayoutRequest::Solver::automatic ? automatic_answer(data, params, *layout) : layout->body;
   r.cacheable = !post;
   r.headers.emplace_back("X-Result-Cache", cached ? "hit" : "miss");
   return r;
@@ -355,8 +635,11 @@ MetroService::ClusterWindow MetroService::layout_window(const Request& req, cons
   auto params = parse_layout_query(req);
   bool cached = false;
   auto layout = layout_for(data, params, &cached);
-  w.tree = tree_for("clusters:layout:" + data.key + ":" + params.canonical(), layout->poi_layout, layout->poi_worth,
-                    &layout->poi_outside);
+  auto tree_key = "clusters:layout:" + data.key + ":" + params.canonical();
+  // An improved layout moved the POIs: its tree is another one (a key of its own, so that a
+  // tree built from the fast layout, in memory or in the store, is never taken for it).
+  if (improvement_of(layout->body) == "applied") tree_key += ":improved";
+  w.tree = tree_for(tree_key, layout->poi_layout, layout->poi_worth, &layout->poi_outside);
   return w;
 }
 

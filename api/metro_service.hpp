@@ -3,6 +3,10 @@
 // with their caches: per city version the derived data and the geographic cluster tree; per
 // (city version, parameters) the layout (also persisted in the store's result cache, since a
 // large network takes seconds) and the layout-space cluster tree.
+//
+// Default layouts (solver=auto) are answered with the fast layout at once; the MIP polish runs
+// afterwards in the background (LayoutImprover below) and, when it wins, replaces the cached
+// layout and is announced through the event sink (WS /api/v1/events, wired by the server).
 
 #include "catalog.hpp"
 #include "http.hpp"
@@ -12,7 +16,14 @@
 
 #include "poi/cluster_tree.hpp"
 
+#include <atomic>
+#include <condition_variable>
+#include <cstdint>
+#include <deque>
+#include <functional>
 #include <memory>
+#include <mutex>
+#include <thread>
 
 namespace tourmap::api {
 
@@ -28,13 +39,71 @@ struct MetroLimits {
   std::size_t layout_cache_bytes = 256u << 20;   // per parameter set: the answer and POI positions
   std::size_t tree_cache_bytes = 256u << 20;     // cluster trees (geographic and per layout)
   std::size_t worth_cache_bytes = 64u << 20;     // POI worth and cluster centres in lon/lat
+  // Background improvement of default layouts (solver=auto; see MetroService::layout):
+  //   - one MIP at a time, on one dedicated thread at nice 10 (2 cores: foreground requests
+  //     come first; the CBC child inherits the nice value);
+  //   - at most `improve_queue` waiting, one per cache key; a new one at a full queue drops
+  //     the oldest waiting one (counted; a later request for that layout schedules it again);
+  //   - CBC gets `improve_mip_s`, what the synchronous auto polish had: with larger limits it
+  //     overran them in its root node on the sample cities and was killed, winning nothing;
+  //   - its child is killed `improve_mip_grace_s` past that (the server's solver; requests
+  //     get 1 s): CBC took 1.2-1.5 s of wall time for 0.5 s when idle, so 1 s lost most
+  //     improvements under load, and no client waits for this one;
+  //   - an improvement of a city version replaced meanwhile is dropped; shutdown stops the
+  //     running one (its CBC child is killed) and drops the waiting ones.
+  std::size_t improve_queue = 8;
+  double improve_mip_s = 0.5;
+  double improve_mip_grace_s = 3.0;
+};
+
+// The background queue of layout improvements: jobs deduplicated by key, run one at a time
+// on one thread (started on first use, so tests, the CLI and benchmarks that never schedule
+// one have no thread), at a low CPU priority, with a stop token that request_stop() sets:
+// a running MIP's child process is killed within its poll interval (api/mip_runner.hpp) and
+// the fast path's loops stop at their next util::check_stop(). No exception leaves a job.
+class LayoutImprover {
+ public:
+  // A job polls `stop` (or installs it in a util::StopToken): set when the improver stops.
+  using Job = std::function<void(const std::atomic<bool>& stop)>;
+  // pending: that key is already queued or running; refused: stopping (or no thread to be had).
+  enum class Admission { queued, pending, refused };
+  struct Stats {
+    std::size_t queued = 0, running = 0;
+    std::uint64_t dropped = 0, failed = 0;  // dropped from a full queue; threw
+  };
+
+  explicit LayoutImprover(std::size_t max_queue) : max_queue_(max_queue == 0 ? 1 : max_queue) {}
+  ~LayoutImprover() { stop(); }
+  LayoutImprover(const LayoutImprover&) = delete;
+  LayoutImprover& operator=(const LayoutImprover&) = delete;
+
+  Admission push(const std::string& key, Job job);
+  void request_stop();  // refuses new jobs, drops the waiting ones, stops the running one; no wait
+  void stop();          // request_stop(), then joins the thread
+  Stats stats() const;
+
+ private:
+  void work();
+
+  const std::size_t max_queue_;
+  mutable std::mutex mutex_;
+  std::condition_variable wake_;
+  std::deque<std::pair<std::string, Job>> queue_;
+  std::string running_;  // the running job's key, empty when idle
+  std::atomic<bool> stop_{false};
+  std::uint64_t dropped_ = 0, failed_ = 0;
+  std::thread thread_;
 };
 
 class MetroService {
  public:
   // Without `mip`, MIPs are solved in this process (tests, benchmarks); the server passes a
-  // child-process solver so that no request outlives its deadline.
-  explicit MetroService(Catalog& catalog, MipSolver mip = {}, MetroLimits limits = {});
+  // child-process solver so that no request outlives its deadline. `improve_mip` solves the
+  // background improvements' MIPs (empty: `mip`).
+  explicit MetroService(Catalog& catalog, MipSolver mip = {}, MetroLimits limits = {}, MipSolver improve_mip = {});
+  ~MetroService();
+  MetroService(const MetroService&) = delete;
+  MetroService& operator=(const MetroService&) = delete;
 
   Response layout(const Request& req, bool post);
   Response visual_worth(const Request& req);
@@ -42,6 +111,22 @@ class MetroService {
 
   std::shared_ptr<const CityMetroData> data_for(const std::string& city_id);
   std::shared_ptr<const CityLayout> layout_for(const CityMetroData& data, const LayoutRequest& req, bool* cached);
+
+  // Gets a `layout_improved` event (JSON) whenever a background MIP replaced a cached default
+  // layout; called on the improver's thread. A callback, so that api/ does not depend on the
+  // server's WebSocket hub. Set it before serving.
+  using EventSink = std::function<void(const std::string& json)>;
+  void on_layout_improved(EventSink sink) { event_sink_ = std::move(sink); }
+  struct ImprovementStats {
+    LayoutImprover::Stats queue;
+    std::uint64_t scheduled = 0, improved = 0, not_improved = 0, stale = 0;
+  };
+  ImprovementStats improvement_stats() const;
+  // Shutdown: stop_improvements() waits for the improver's thread (a running MIP is killed);
+  // call it before whatever the event sink publishes to goes away. request_stop_improvements()
+  // only asks (for a signal handler that must not block).
+  void request_stop_improvements() { improver_.request_stop(); }
+  void stop_improvements() { improver_.stop(); }
 
  private:
   using LonLats = std::vector<geo::LonLat>;
@@ -78,9 +163,19 @@ class MetroService {
                                                 const geo::LocalProjection& projection);
   std::shared_ptr<const poi::ClusterTree> tree_for(const std::string& key, const std::vector<geo::XY>& points,
                                                    const std::vector<double>& worth, const std::vector<bool>* skip);
+  std::shared_ptr<const CityLayout> compute_layout(const CityMetroData& data, const LayoutRequest& req);
+  // The background improvement of a default layout (see MetroLimits and layout()).
+  std::string automatic_answer(const std::shared_ptr<const CityMetroData>& data, const LayoutRequest& req,
+                               const CityLayout& layout);
+  void improve(const std::shared_ptr<const CityMetroData>& data, const LayoutRequest& req,
+               const std::atomic<bool>& stop);
+  void mark_not_improved(const std::string& key);
+  void replace_layout(const std::string& key, const std::shared_ptr<const CityLayout>& layout);
+  bool current_version(const CityMetroData& data);
 
   Catalog& catalog_;
   MipSolver mip_;
+  MipSolver improve_mip_;
   MetroLimits limits_;
   // Bounded in bytes (MetroLimits): a layout varies with its parameters, so a client can ask
   // for many; a cluster tree of 100,000 POIs holds 16 MB.
@@ -91,6 +186,10 @@ class MetroService {
   LruCache<std::shared_ptr<const GeoCenters>> geo_centers_;  // by geographic tree key
   SingleFlight<std::shared_ptr<const CityLayout>> layout_flight_;
   SingleFlight<std::shared_ptr<const poi::ClusterTree>> tree_flight_;
+  EventSink event_sink_;
+  std::atomic<std::uint64_t> scheduled_{0}, improved_{0}, not_improved_{0}, stale_{0};
+  // Last: destroyed first, so a running job never sees the caches above gone.
+  LayoutImprover improver_;
 };
 
 }  // namespace tourmap::api

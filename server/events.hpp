@@ -2,6 +2,8 @@
 // WS /api/v1/events: tells connected clients when the catalog changes (a city or road network
 // was imported or deleted, by this process or another one writing the same database), so a client can
 // refresh without polling. The store is polled every `interval` for the newest import.
+// Other parts of the server publish their own events through publish() (the metro service's
+// `layout_improved`, when a background MIP replaced a cached default layout).
 
 #include "server_state.hpp"
 
@@ -23,6 +25,8 @@ class EventHub {
   WsEndpoint endpoint();
   void start();
   void stop();
+  // Sends `message` (a JSON object with a "type") to every connected client; any thread.
+  void publish(const std::string& message) { broadcast(message); }
 
  private:
   void poll();

@@ -61,6 +61,35 @@ void add_gauges(ServerState& state) {
                           });
 }
 
+// The background improvement of default layouts (api/metro_service.hpp, MetroLimits).
+void add_improvement_gauges(ServerState& state, api::MetroService& metro) {
+  using Stats = api::MetroService::ImprovementStats;
+  const struct {
+    const char* name;
+    const char* help;
+    double (*read)(const Stats&);
+  } gauges[] = {
+      {"tourmap_layout_improvements_queued", "Default layouts waiting for their background MIP improvement.",
+       [](const Stats& s) { return static_cast<double>(s.queue.queued); }},
+      {"tourmap_layout_improvements_running", "Background MIP improvements running (at most 1).",
+       [](const Stats& s) { return static_cast<double>(s.queue.running); }},
+      {"tourmap_layout_improvements_scheduled", "Background MIP improvements scheduled (grows).",
+       [](const Stats& s) { return static_cast<double>(s.scheduled); }},
+      {"tourmap_layout_improvements_applied", "Background MIP results that replaced a cached layout (grows).",
+       [](const Stats& s) { return static_cast<double>(s.improved); }},
+      {"tourmap_layout_improvements_not_better", "Background MIP results not accepted: the fast layout stays (grows).",
+       [](const Stats& s) { return static_cast<double>(s.not_improved); }},
+      {"tourmap_layout_improvements_dropped", "Waiting improvements dropped because the queue was full (grows).",
+       [](const Stats& s) { return static_cast<double>(s.queue.dropped); }},
+      {"tourmap_layout_improvements_stale", "Improvements dropped because the city was imported again (grows).",
+       [](const Stats& s) { return static_cast<double>(s.stale); }},
+      {"tourmap_layout_improvements_failed", "Improvements that failed with an error (grows).",
+       [](const Stats& s) { return static_cast<double>(s.queue.failed); }},
+  };
+  for (const auto& g : gauges)
+    state.metrics.add_gauge(g.name, g.help, [&metro, read = g.read] { return read(metro.improvement_stats()); });
+}
+
 // Accepts connections. When accepting fails (the process is out of file descriptors: EMFILE,
 // or the system: ENFILE, ENOBUFS, ENOMEM), the pending connection stays in the listen queue
 // and the next accept would fail at once: without a pause the loop spins a core at 100 %.
@@ -124,10 +153,20 @@ int serve(const Config& config, const std::function<void(unsigned short)>& on_li
   api::Catalog catalog(db);
   ServerState state(config);  // declared before the io_context: sessions refer to it until the end
   api::DeformService deform(catalog);
-  api::MetroService metro(catalog, api::child_process_mip_solver("/proc/self/exe"));
+  const api::MetroLimits metro_limits;
+  api::MetroService metro(catalog, api::child_process_mip_solver("/proc/self/exe"), metro_limits,
+                          api::child_process_mip_solver("/proc/self/exe", metro_limits.improve_mip_grace_s));
   api::AppContext ctx{db, catalog, deform, metro, TOURMAP_VERSION};
   net::io_context ioc(static_cast<int>(config.io_threads));
   EventHub events(ioc, db, std::chrono::milliseconds(2000));
+  // Default layouts are improved in the background and announced on /api/v1/events. The
+  // improver's thread publishes into `events`: it is stopped before `events` goes (also when
+  // serve() leaves by an exception), by this guard declared after it.
+  metro.on_layout_improved([&events](const std::string& event) { events.publish(event); });
+  struct StopImprovements {
+    api::MetroService& metro;
+    ~StopImprovements() { metro.stop_improvements(); }
+  } stop_improvements{metro};
   api::CrowdAssets crowd_assets(config.data_dir + "/models", &db, config.crowd_max_subdivision);
   ctx.crowd = &crowd_assets;
   ctx.crowd_limits.max_streams = config.max_crowd_streams;
@@ -149,6 +188,7 @@ int serve(const Config& config, const std::function<void(unsigned short)>& on_li
                             const auto s = deform.cache_stats();
                             return static_cast<double>(s.network_bytes + s.prepared_bytes + s.result_bytes);
                           });
+  add_improvement_gauges(state, metro);
   state.metrics.add_gauge("tourmap_crowd_variants_evicted",
                           "Prepared crowd scene variants (scene, count) evicted to make room (grows).",
                           [&crowd] { return static_cast<double>(crowd.variants_evicted()); });
@@ -196,6 +236,7 @@ int serve(const Config& config, const std::function<void(unsigned short)>& on_li
     boost::system::error_code ignored;
     acceptor.close(ignored);
     events.stop();
+    metro.request_stop_improvements();
     crowd.request_stop();
     state.http_sessions.close_all();
     state.ws_sessions.close_all();
@@ -211,6 +252,7 @@ int serve(const Config& config, const std::function<void(unsigned short)>& on_li
   for (auto& t : threads) t.join();
 
   crowd.stop();
+  metro.stop_improvements();
   state.compute_pool.shutdown();  // before the io_context goes: finished tasks post into it
   state.read_pool.shutdown();
   db.close_idle();

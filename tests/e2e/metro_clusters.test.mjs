@@ -153,6 +153,14 @@ async function run(state) {
   const before = await stationPositions(page);
   await page.click('[data-testid=mode-switch] [data-value=octilinear]');
   await page.waitForSelector(`${MAP}[data-mode=octilinear][data-transition=idle][data-layout=ready]`);
+  // A background improvement may swap the layout in (and morph) right after: give it time to
+  // land (the layout info says `scheduled` while one is pending; a MIP that does not win sends
+  // nothing, so the wait ends quietly at its timeout).
+  await page
+    .waitForFunction(() => document.querySelector('[data-testid=layout-info]')?.dataset.improvement !== 'scheduled',
+      null, { timeout: 8000 })
+    .catch(() => {});
+  await page.waitForSelector(`${MAP}[data-mode=octilinear][data-transition=idle][data-layout=ready]`);
   const after = await stationPositions(page);
   const ids = Object.keys(after);
   check(ids.length === city.counts.stations, `octilinear: ${ids.length} stations drawn, the API counts ${city.counts.stations}`);

@@ -45,6 +45,7 @@ function show(route: Route): void {
 
 new EventStream({
   onCatalogChange: (lastImport) => views.forEach((view) => view.catalogChanged(lastImport)),
+  onLayoutImproved: (event) => views.forEach((view) => view.layoutImproved?.(event)),
   onStateChange: (state) => shell.setConnection(state),
 }).start();
 

@@ -1,10 +1,12 @@
-import type { LastImport, ServerEvent } from './types';
+import type { LastImport, LayoutImprovedEvent, ServerEvent } from './types';
 
 export type ConnectionState = 'connecting' | 'live' | 'offline';
 
 export interface EventStreamHandlers {
   /** Data was imported while we listened (or while we were disconnected). */
   onCatalogChange(lastImport: LastImport | undefined): void;
+  /** A default layout was improved in the background (events missed while offline are not replayed). */
+  onLayoutImproved(event: LayoutImprovedEvent): void;
   onStateChange(state: ConnectionState): void;
 }
 
@@ -14,8 +16,9 @@ const MAX_RETRY_MS = 30000;
 const PING_INTERVAL_MS = 45000;
 
 /**
- * Listens to /api/v1/events and reconnects with exponential backoff (plus jitter, so many
- * clients do not hammer a restarted server in step) whenever the socket closes.
+ * Listens to /api/v1/events (catalog changes, layouts improved in the background) and
+ * reconnects with exponential backoff (plus jitter, so many clients do not hammer a restarted
+ * server in step) whenever the socket closes.
  */
 export class EventStream {
   private retryMs = FIRST_RETRY_MS;
@@ -61,6 +64,8 @@ export class EventStream {
     } else if (event.type === 'catalog') {
       this.catalogVersion = event.catalog_version;
       this.handlers.onCatalogChange(event.last_import);
+    } else if (event.type === 'layout_improved') {
+      this.handlers.onLayoutImproved(event);
     }
   }
 

@@ -130,10 +130,28 @@ export interface LastImport {
   target: string;
 }
 
+/**
+ * A background MIP improved a default (solver=auto) layout and replaced it in the server's
+ * cache: the same request now gets the improved one.
+ */
+export interface LayoutImprovedEvent {
+  type: 'layout_improved';
+  city: string;
+  /** The city's version (the layout's `version`). */
+  version: number;
+  /** The request's canonical parameters (the server's cache key). */
+  key: string;
+  /** The layout's `params`, with solver "auto". */
+  params: Record<string, string | number>;
+  solver: { kind: string; status: string; gap: number | null };
+  quality: LayoutQuality;
+}
+
 /** Messages of the /api/v1/events WebSocket. */
 export type ServerEvent =
   | { type: 'hello'; catalog_version: number; last_import?: LastImport }
   | { type: 'catalog'; catalog_version: number; last_import?: LastImport }
+  | LayoutImprovedEvent
   | { type: 'pong' }
   | { type: 'error'; code: string; message: string };
 
@@ -298,6 +316,11 @@ export interface LayoutSolver {
   kind: string;
   status: string;
   gap: number | null;
+  /**
+   * scheduled: a background MIP runs for this layout (a layout_improved event follows if it
+   * wins); none: nothing follows; applied: this is the improved layout.
+   */
+  improvement?: 'scheduled' | 'none' | 'applied';
   mip?: { accepted?: boolean; status?: string; reason?: string; time_ms?: number; gap?: number | null };
 }
 

@@ -64,9 +64,15 @@ export class LayoutInfo {
     this.stopTimer();
     const { quality, solver, timing_ms: timing, params } = answer.layout;
     const mip = solver.mip;
-    const mipText = mip
-      ? `MIP ${mip.accepted ? 'accepted' : 'not used'}${mip.status ? ` (${mip.status}${mip.accepted || !mip.reason ? '' : `: ${mip.reason}`})` : ''}`
-      : '';
+    const mipText = [
+      mip ? `MIP ${mip.accepted ? 'accepted' : 'not used'}${mip.status ? ` (${mip.status}${mip.accepted || !mip.reason ? '' : `: ${mip.reason}`})` : ''}` : '',
+      solver.improvement === 'scheduled'
+        ? 'The MIP polishes this layout in the background: the map changes to it if it is better.'
+        : '',
+      solver.improvement === 'applied' ? 'Polished by the MIP in the background.' : '',
+    ]
+      .filter(Boolean)
+      .join('. ');
     const rows: [string, string, string?][] = [
       ['Octilinear', percent(quality.octilinear_share), 'Share of edge segments at a multiple of 45°'],
       ['Bends', quality.bends.toLocaleString()],
@@ -83,6 +89,8 @@ export class LayoutInfo {
     );
     this.layout.dataset.state = 'ready';
     this.layout.dataset.octilinear = String(quality.octilinear_share);
+    this.layout.dataset.solver = solver.kind;
+    this.layout.dataset.improvement = solver.improvement ?? '';
     this.layout.hidden = false;
     this.update();
   }

@@ -78,7 +78,11 @@ export class MapOptions {
     );
     this.solver = h(
       'select',
-      { id: 'layout-solver', 'data-testid': 'layout-solver', title: 'Layout solver: auto polishes small networks with the MIP' },
+      {
+        id: 'layout-solver',
+        'data-testid': 'layout-solver',
+        title: 'Layout solver: auto draws the fast layout at once, then the MIP polish if it is better',
+      },
       h('option', { value: 'auto' }, 'auto'),
       h('option', { value: 'fast' }, 'fast'),
       h('option', { value: 'mip' }, 'MIP (slow)'),

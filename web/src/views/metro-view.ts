@@ -15,6 +15,7 @@ import type {
   CitySummary,
   ClusterSpace,
   LastImport,
+  LayoutImprovedEvent,
   LayoutParams,
   PoiCluster,
   PoiCollection,
@@ -56,6 +57,9 @@ const HEAT_MARGIN = 0.15;
 /** A click on a cluster zooms in this much around it. */
 const CLUSTER_ZOOM = 2.5;
 
+/** The layouts of a city by parameters: what the client asks for (see layoutFor). */
+const layoutKey = (cityId: string, params: LayoutParams) => `${cityId}|${params.lengths}|${params.solver}`;
+
 const plural = (n: number, word: string) => `${n.toLocaleString()} ${word}${n === 1 ? '' : 's'}`;
 const lerp = (a: number, b: number, t: number) => a + (b - a) * t;
 
@@ -85,7 +89,8 @@ interface LayoutEntry extends LayoutAnswer {
  *
  * The map element reports data-status (loading, ready, error) and data-city (drawn), data-mode
  * (geographic, octilinear: the drawing shown once a morph is over), data-transition (running,
- * idle) and data-layout (loading, ready, error) for tests.
+ * idle), data-layout (loading, ready, error), data-layout-solver (the drawn layout's solver:
+ * fast, mip) and data-layout-swaps (improved layouts swapped in) for tests.
  */
 export class MetroView implements View {
   readonly element: HTMLElement;
@@ -352,7 +357,7 @@ export class MetroView implements View {
 
   /** The layout for the parameters, asked for once per city and parameters (a failure is forgotten). */
   private layoutFor(city: CitySummary, params: LayoutParams, signal: AbortSignal): Promise<LayoutEntry> {
-    const key = `${city.id}|${params.lengths}|${params.solver}`;
+    const key = layoutKey(city.id, params);
     let entry = this.layouts.get(key);
     if (!entry) {
       const layers = this.layers!;
@@ -383,7 +388,7 @@ export class MetroView implements View {
     if (!city || !layers || !load) return;
     const request = ++this.modeRequest;
     const params = this.layoutParams();
-    const key = `${city.id}|${params.lengths}|${params.solver}`;
+    const key = layoutKey(city.id, params);
     const data = this.map.element.dataset;
     if (!this.layoutsReady.has(key)) {
       data.layout = 'loading';
@@ -420,6 +425,62 @@ export class MetroView implements View {
     this.notice.clear('layout');
     this.shownLayout = entry;
     data.layout = 'ready';
+    data.layoutSolver = entry.layout.solver.kind;
+    this.info.showLayout(entry);
+    this.morphTo(entry.geometry, 'octilinear');
+  }
+
+  /**
+   * The server improved a default layout in the background (a MIP polish that won). If it is
+   * one this view asked for (same city version and parameters), the cached answer is dropped;
+   * if it is the one drawn, the improved one is fetched and morphed in like any layout change:
+   * no reload, and the view stays where the user put it (a fitted map stays fitted).
+   */
+  layoutImproved(event: LayoutImprovedEvent): void {
+    const city = this.city;
+    if (!city || event.city !== city.id || event.params.solver !== 'auto') return;
+    const lengths = event.params.lengths;
+    if (lengths !== 'visual-worth' && lengths !== 'uniform') return;
+    const params: LayoutParams = { lengths, solver: 'auto' };
+    const asked = this.layouts.get(layoutKey(city.id, params));
+    if (asked) void this.swapImproved(city, params, asked, event);
+  }
+
+  private async swapImproved(
+    city: CitySummary,
+    params: LayoutParams,
+    asked: Promise<LayoutEntry>,
+    event: LayoutImprovedEvent,
+  ): Promise<void> {
+    const key = layoutKey(city.id, params);
+    let old: LayoutEntry;
+    try {
+      old = await asked;
+    } catch {
+      return; // failed: forgotten already, the next request gets the improved one
+    }
+    const sameParams = Object.entries(old.layout.params).every(([name, value]) => event.params[name] === value);
+    const stillAsked = this.city === city && this.layouts.get(key) === asked;
+    if (!stillAsked || old.layout.version !== event.version || !sameParams) return;
+    if (old.layout.solver.improvement === 'applied') return; // asked for after the improvement
+    this.layouts.delete(key);
+    this.layoutsReady.delete(key);
+    const load = this.cityLoad;
+    if (!load) return;
+    let entry: LayoutEntry;
+    try {
+      entry = await this.layoutFor(city, params, load.signal);
+    } catch {
+      return; // the layout drawn stays; a later switch asks again
+    }
+    // Swapped in only where the old one is still what is drawn, or being morphed to.
+    const current = this.layoutParams();
+    const drawn = this.shownLayout === old && this.options.state.mode === 'octilinear';
+    if (!drawn || current.lengths !== params.lengths || current.solver !== 'auto') return;
+    const data = this.map.element.dataset;
+    this.shownLayout = entry;
+    data.layoutSolver = entry.layout.solver.kind;
+    data.layoutSwaps = String(Number(data.layoutSwaps ?? 0) + 1);
     this.info.showLayout(entry);
     this.morphTo(entry.geometry, 'octilinear');
   }
@@ -447,6 +508,10 @@ export class MetroView implements View {
     this.clusterRequest.cancel();
     this.heatRequest.cancel();
     this.clusters?.clear();
+    // Gone until the morph's end asks again: not "ready" meanwhile. A morph may now start
+    // unasked (an improved layout swapped in), and whoever waits for the clusters of the
+    // window (a test) must not take the cleared layer for them.
+    if (layers.clusterLayer.dataset.status === 'ready') layers.clusterLayer.dataset.status = 'waiting';
     this.heat?.clear();
     this.heatShown = undefined;
     this.info.setPlaces(null);

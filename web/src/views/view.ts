@@ -1,4 +1,4 @@
-import type { LastImport } from '../api/types';
+import type { LastImport, LayoutImprovedEvent } from '../api/types';
 
 /** One of the app's pages (Metro, Deform, Crowd); kept while hidden, so coming back keeps its state. */
 export interface View {
@@ -7,6 +7,8 @@ export interface View {
   show(param: string | undefined): void;
   /** Data was imported on the server (undefined: something changed while we were offline). */
   catalogChanged(lastImport: LastImport | undefined): void;
+  /** A metro layout was improved on the server (views that show none ignore it). */
+  layoutImproved?(event: LayoutImprovedEvent): void;
   /** Another view is shown instead: stop what only matters on screen (a stream, say). */
   hide?(): void;
 }
