@@ -13,7 +13,7 @@
 namespace tourmap::api {
 namespace {
 
-constexpr int kLayoutVersion = 5;  // 5: quality.min_station_gap; the MIP may not add bends
+constexpr int kLayoutVersion = 6;  // 6: bend reduction, quality.compare (the metric tool's figures)
 using util::Clock;
 using util::ms_since;
 
@@ -49,8 +49,10 @@ void set_number(LayoutRequest& r, const std::string& key, double v) {
   else if (key == "l_const") r.l_const = bounded(v, key, 1, 1000);
 }
 
-nlohmann::json quality_json(const metro::LayoutQuality& q) {
+nlohmann::json quality_json(const metro::LayoutQuality& q, const metro::CompareMetrics& c) {
   return {{"octilinear_share", q.octilinear_share}, {"bends", q.bends},
+          {"compare", {{"bends", c.bends}, {"displacement", c.displacement},
+                       {"min_over_mean_edge", c.min_over_mean_edge}, {"octilinear_share", c.octilinear_share}}},
           {"crossings", q.crossings},               {"geo_crossings", q.geo_crossings},
           {"added_crossings", q.added_crossings},
           {"order_violations", q.order_violations}, {"min_edge", q.min_edge},
@@ -270,7 +272,7 @@ std::string layout_body(const CityMetroData& d, const LayoutRequest& req, const 
                 {"geo", points_json(L.frame.mesh.geo)}, {"layout", points_json(L.frame.mesh.layout)}}},
       {"outline", {{"geo", points_json(L.frame.outline.geo)}, {"layout", points_json(L.frame.outline.layout)}}},
       {"lines", std::move(lines)},
-      {"quality", quality_json(L.quality)},
+      {"quality", quality_json(L.quality, L.compare)},
       {"solver", solver_json(L.solver)},
       {"fast_path", {{"status", report.timed_out ? "time_limit" : report.failed ? "incomplete" : report.overlapping ? "overlapping" : "ok"},
                      {"time_ms", L.timing.fast},

@@ -27,6 +27,7 @@ struct CityMetroInput {
   std::vector<double> poi_station_km;  // geodesic distance to the nearest station (rho_i)
   bool has_rank = false;               // some POI has a rank or popularity in the data
   std::size_t station_count = 0;       // nodes that are stations (not junctions)
+  std::vector<bool> is_station;        // per node
 };
 
 CityMetroInput make_city_metro_input(const model::MetroNetwork& net, const std::vector<model::Poi>& pois,

@@ -78,6 +78,7 @@ CityLayoutResult layout_city(const CityMetroInput& in, const std::vector<model::
       out.solver.gap = out.solver.mip->gap;
     }
   }
+  out.compare = metro_compare_metrics(g, in.is_station, layout);
   out.timing.layout = ms_since(t);
 
   // 3. Into the geographic frame, and warping (5.4.3) of POIs, outline and mesh.

@@ -8,6 +8,7 @@
 #include "metro/bend_reduction.hpp"
 #include "metro/city_frame.hpp"
 #include "metro/city_input.hpp"
+#include "metro/layout_metrics.hpp"
 #include "metro/layout_quality.hpp"
 #include "metro/mip_polish.hpp"
 #include "metro/octilinear_grid.hpp"
@@ -52,6 +53,8 @@ struct CityLayoutResult {
   std::vector<double> node_worth;    // vw per node (raw eq. 5.1)
   std::vector<double> poi_worth;     // vw per POI (raw eq. 5.1)
   LayoutQuality quality;
+  CompareMetrics compare;            // the figures of ../shared/tools/metro_compare.py (bends as a
+                                     // reader counts them: along lines between interchanges)
   GridRouteReport route;
   BendReductionReport bends;
   SolverReport solver;

@@ -54,6 +54,12 @@ TEST_F(MetroApi, LayoutIsOctilinearWithWarpedPoisAndAReport) {
   EXPECT_LE(q["crossings"].get<int>(), q["geo_crossings"].get<int>());
   EXPECT_EQ(q["order_violations"], 0);
   EXPECT_GT(q["min_edge"].get<double>(), 0.0);
+  // The metric tool's figures: bends along lines between interchanges, never more than the
+  // bends counted per edge and through every station.
+  ASSERT_TRUE(q.contains("compare"));
+  EXPECT_LE(q["compare"]["bends"].get<int>(), q["bends"].get<int>());
+  EXPECT_GT(q["compare"]["displacement"].get<double>(), 0.0);
+  EXPECT_EQ(q["compare"]["octilinear_share"], 1.0);
   EXPECT_TRUE(l["solver"]["kind"] == "fast" || l["solver"]["kind"] == "mip");
   EXPECT_EQ(l["mesh"]["geo"].size(), l["mesh"]["layout"].size());
   EXPECT_GT(l["outline"]["layout"].size(), 2u);

@@ -310,6 +310,11 @@ export interface LayoutQuality {
   min_edge: number;
   mean_edge: number;
   mean_displacement: number;
+  min_station_gap?: number | null;
+  min_station_gap_ratio?: number | null;
+  /** The figures of ../shared/tools/metro_compare.py: bends as a reader counts them (along
+   *  lines between interchanges), displacement as a share of the geographic diagonal. */
+  compare?: { bends: number; displacement: number; min_over_mean_edge: number; octilinear_share: number };
 }
 
 export interface LayoutSolver {

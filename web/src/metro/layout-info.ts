@@ -75,7 +75,7 @@ export class LayoutInfo {
       .join('. ');
     const rows: [string, string, string?][] = [
       ['Octilinear', percent(quality.octilinear_share), 'Share of edge segments at a multiple of 45°'],
-      ['Bends', quality.bends.toLocaleString()],
+      ['Bends', (quality.compare?.bends ?? quality.bends).toLocaleString()],
       ['Crossings', `${quality.crossings} (geo ${quality.geo_crossings}, added ${quality.added_crossings})`, 'Edge crossings in the layout (in the geographic map; in the layout only)'],
       ['Order viol.', String(quality.order_violations), 'Order violations: stations whose neighbours changed their circular order'],
       ['Solver', `${solver.kind} · ${solver.status}`],
