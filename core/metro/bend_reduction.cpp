@@ -3,11 +3,11 @@
 #include "metro/layout_chains.hpp"
 #include "metro/octilinear_shapes.hpp"
 #include "metro/segment_geometry.hpp"
+#include "metro/warp.hpp"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <complex>
 #include <limits>
 #include <map>
 #include <set>
@@ -173,27 +173,11 @@ class BendSearch {
 };
 
 void BendSearch::fit_targets() {
-  // Least-squares similarity (scale, rotation, translation) of the geography onto the layout,
+  // Least-squares similarity (scale, rotation, translation) of the geography onto the layout:
   // the fit the displacement figure uses.
-  const std::size_t n = g_.pos.size();
-  std::complex<double> zm, wm;
-  for (std::size_t v = 0; v < n; ++v) {
-    zm += std::complex<double>(g_.pos[v].x, g_.pos[v].y) / double(n);
-    wm += std::complex<double>(layout_.pos[v].x, layout_.pos[v].y) / double(n);
-  }
-  std::complex<double> num;
-  double den = 0;
-  for (std::size_t v = 0; v < n; ++v) {
-    const auto z = std::complex<double>(g_.pos[v].x, g_.pos[v].y) - zm;
-    num += std::conj(z) * (std::complex<double>(layout_.pos[v].x, layout_.pos[v].y) - wm);
-    den += std::norm(z);
-  }
-  const auto a = den > 0 ? num / den : std::complex<double>(1, 0);
-  target_.resize(n);
-  for (std::size_t v = 0; v < n; ++v) {
-    const auto w = a * (std::complex<double>(g_.pos[v].x, g_.pos[v].y) - zm) + wm;
-    target_[v] = {w.real(), w.imag()};
-  }
+  const Helmert fit = fit_helmert(g_.pos, layout_.pos);
+  target_.resize(g_.pos.size());
+  for (std::size_t v = 0; v < g_.pos.size(); ++v) target_[v] = fit.apply(g_.pos[v]);
 }
 
 double BendSearch::chain_cost(std::size_t c, const Drawn& d) const {
@@ -320,8 +304,7 @@ CandidateQueue BendSearch::candidates(std::size_t c) const {
   for (auto& s : octilinear_shapes(pa, pb, eps_)) {
     const double len = polyline_length(s.corners);
     if (len < p_.min_length_share * chain_target_[c]) continue;
-    const double r = std::log(len / chain_target_[c]);
-    const double bound = shape_bound(c, s.corners, nullptr) + p_.w_length * r * r * chain.edges.size() * 0;
+    const double bound = shape_bound(c, s.corners, nullptr);  // stations not placed yet: no length term
     if (!chain.inner.empty()) out.push_back({Proposal::near_targets, bound, s.corners, {}});
     out.push_back({Proposal::share, bound, std::move(s.corners), {}});
   }
@@ -566,10 +549,6 @@ void BendSearch::setup() {
       if (i + 1 < chain.edges.size()) d.inner.push_back(layout_.pos[chain.inner[i]]);
     }
     box_[c] = box_of(d.shape);
-  }
-  for (std::uint32_t v = 0; v < n; ++v) {  // anchors on a cycle chain stay where they are
-    for (const auto& end : ends_[v])
-      if (fixed_[end.chain]) fixed_[end.chain] = 1;
   }
   order_.assign(n, {});
   for (std::uint32_t v = 0; v < n; ++v) {

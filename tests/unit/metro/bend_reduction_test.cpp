@@ -15,14 +15,7 @@
 namespace tourmap::metro {
 namespace {
 
-LayoutGraph graph(std::vector<XY> pos, std::vector<std::pair<std::uint32_t, std::uint32_t>> edges, double length = 10) {
-  LayoutGraph g;
-  g.pos = std::move(pos);
-  g.edges = std::move(edges);
-  g.edge_lines.assign(g.edges.size(), {0});
-  g.min_length.assign(g.edges.size(), length);
-  return g;
-}
+using test_networks::graph;
 
 // Bends along chains, as a reader (and ../shared/tools/metro_compare.py) counts them.
 std::size_t chain_bends(const LayoutGraph& g, const Layout& layout) {

@@ -8,6 +8,17 @@
 
 namespace tourmap::metro::test_networks {
 
+// A small hand-made network: one line on every edge, every edge `length` long.
+inline LayoutGraph graph(std::vector<XY> pos, std::vector<std::pair<std::uint32_t, std::uint32_t>> edges,
+                         double length = 10) {
+  LayoutGraph g;
+  g.pos = std::move(pos);
+  g.edges = std::move(edges);
+  g.edge_lines.assign(g.edges.size(), {0});
+  g.min_length.assign(g.edges.size(), length);
+  return g;
+}
+
 inline LayoutGraph graph_of(const model::MetroNetwork& net) {
   return layout_graph_of(net, geo::projection_for(model::bbox_of(net)));
 }

@@ -9,14 +9,7 @@
 namespace tourmap::metro {
 namespace {
 
-LayoutGraph graph(std::vector<XY> pos, std::vector<std::pair<std::uint32_t, std::uint32_t>> edges) {
-  LayoutGraph g;
-  g.pos = std::move(pos);
-  g.edges = std::move(edges);
-  g.edge_lines.assign(g.edges.size(), {0});
-  g.min_length.assign(g.edges.size(), 10.0);
-  return g;
-}
+using test_networks::graph;
 
 TEST(TopologyGuard, SegmentsIntersect) {
   EXPECT_TRUE(segments_intersect({0, 0}, {2, 2}, {0, 2}, {2, 0}));
