@@ -74,7 +74,8 @@ struct Drawn {
   std::vector<XY> shape;
   std::vector<XY> inner;
   std::vector<double> arc;  // arc length of a, the inner nodes, b
-  double cost = 0;
+  double cost = 0;          // without the clearance term
+  double clear = 0;         // clearance (capped at the gap asked for) when installed
 };
 
 // The edge of `chain` (drawn as `d`) that runs through point `at` on segment `seg` (1-based).
@@ -133,6 +134,9 @@ class BendSearch {
     const double r = std::log(ratio);
     return p_.w_length * r * r * (r < 0 ? 1.0 : p_.longer_share);
   }
+  // A clearance (or an edge length) below the gap asked for, linear in the shortfall.
+  double gap_cost(double clear) const { return p_.w_gap * std::max(0.0, gap_ - clear) / gap_; }
+  void refresh_clearances();
   Drawn drawn_along(std::size_t c, const std::vector<XY>& shape) const;
   Drawn drawn_near_targets(std::size_t c, const std::vector<XY>& shape) const;
   void run_phase(BendReductionReport& report, Clock::time_point until);
@@ -164,6 +168,8 @@ class BendSearch {
   std::vector<std::vector<ChainEnd>> order_;          // per anchor: ends counter-clockwise at the start
   std::vector<double> gap_floor_;                     // per chain: clearance asked for (<= gap_)
   std::vector<double> anchor_floor_;                  // per anchor
+  std::vector<double> anchor_clear_;                  // per anchor: its clearance now
+  std::vector<double> edge_floor_;                    // per edge: the shortest it may get
   std::map<std::pair<std::uint32_t, std::uint32_t>, int> crossings_;  // chain pairs crossing at the start...
   std::set<std::pair<std::uint32_t, std::uint32_t>> crossing_edges_;   // ...and the edge pairs that cross there
   std::vector<XY> target_;                            // per node: geography fitted to the layout
@@ -188,7 +194,7 @@ double BendSearch::chain_cost(std::size_t c, const Drawn& d) const {
     cost += p_.w_displacement * dist2(d.inner[i], target_[chain.inner[i]]) / (unit_ * unit_);
   for (std::size_t i = 0; i < chain.edges.size(); ++i) {
     const double len = std::max(d.arc[i + 1] - d.arc[i], 1e-9 * unit_);
-    cost += length_cost(len / g_.min_length[chain.edges[i]]);
+    cost += length_cost(len / g_.min_length[chain.edges[i]]) + gap_cost(len);
   }
   return cost;
 }
@@ -236,11 +242,19 @@ Drawn BendSearch::drawn_near_targets(std::size_t c, const std::vector<XY>& shape
       if (d2 < best) best = d2, arc[i + 1] = seg_start[j - 1] + u * std::sqrt(l2);
     }
   }
-  const auto gap = [&](std::size_t e) { return p_.min_edge_share * g_.min_length[chain.edges[e]]; };
-  for (std::size_t i = 1; i <= k; ++i) arc[i] = std::max(arc[i], arc[i - 1] + gap(i - 1));
-  for (std::size_t i = k; i >= 1; --i) arc[i] = std::min(arc[i], arc[i + 1] - gap(i));
-  for (std::size_t i = 1; i <= k + 1; ++i)
-    if (arc[i] < arc[i - 1] + gap(i - 1) - eps_) return drawn_along(c, shape);
+  // Pushed apart to the gap asked for where the chain has room, else to each edge's floor.
+  const std::vector<double> nearest = arc;
+  bool fits = false;
+  for (const bool roomy : {true, false}) {
+    const auto gap = [&](std::size_t e) { return roomy ? std::max(gap_, edge_floor_[chain.edges[e]]) : edge_floor_[chain.edges[e]]; };
+    arc = nearest;
+    for (std::size_t i = 1; i <= k; ++i) arc[i] = std::max(arc[i], arc[i - 1] + gap(i - 1));
+    for (std::size_t i = k; i >= 1; --i) arc[i] = std::min(arc[i], arc[i + 1] - gap(i));
+    fits = true;
+    for (std::size_t i = 1; i <= k + 1; ++i) fits &= arc[i] >= arc[i - 1] + gap(i - 1) - eps_;
+    if (fits) break;
+  }
+  if (!fits) return drawn_along(c, shape);
   Drawn d;
   d.shape = shape;
   d.arc = std::move(arc);
@@ -255,7 +269,8 @@ double BendSearch::shape_bound(std::size_t c, const std::vector<XY>& shape, cons
   const auto& edges = chains_[c].edges;
   if (arc) {
     for (std::size_t e = 0; e < edges.size(); ++e) {
-      bound += length_cost(std::max((*arc)[e + 1] - (*arc)[e], 1e-9 * unit_) / g_.min_length[edges[e]]);
+      const double len = std::max((*arc)[e + 1] - (*arc)[e], 1e-9 * unit_);
+      bound += length_cost(len / g_.min_length[edges[e]]) + gap_cost(len);
     }
   }
   return bound;
@@ -338,7 +353,7 @@ CandidateQueue BendSearch::candidates(std::size_t c) const {
         p.arc.back() = len;
         bool short_edge = false;
         for (std::size_t e = 0; e < chain.edges.size(); ++e)
-          short_edge |= p.arc[e + 1] - p.arc[e] < p_.min_edge_share * g_.min_length[chain.edges[e]];
+          short_edge |= p.arc[e + 1] - p.arc[e] < edge_floor_[chain.edges[e]] - eps_;
         if (short_edge) continue;
         p.bound = shape_bound(c, p.shape, &p.arc);
         out.push_back(std::move(p));
@@ -358,6 +373,11 @@ double BendSearch::clearance(std::size_t c, const Drawn& d, bool& crossing_ok, d
   double gap2 = gap_ * gap_;
   const double floor2 = floor * floor;
   crossing_ok = true;
+  for (std::size_t e = 0; e < chain.edges.size(); ++e)
+    if (d.arc[e + 1] - d.arc[e] < edge_floor_[chain.edges[e]] - eps_) {
+      crossing_ok = false;
+      return 0;
+    }
   const auto mine = [&](std::uint32_t v) { return v == chain.a || v == chain.b; };
   // Squared distance from p to the polyline, updating gap2 (segments beyond gap2 skipped cheaply).
   const auto near_shape = [&](XY p, const std::vector<XY>& shape) {
@@ -438,12 +458,30 @@ double BendSearch::clearance(std::size_t c, const Drawn& d, bool& crossing_ok, d
     for (const auto& q : d.inner) near_shape(q, os);
     if (gap2 < floor2) return std::sqrt(gap2);
   }
-  // Within the chain: inner nodes that are not neighbours.
-  const std::size_t k = d.inner.size();
-  for (std::size_t i = 0; i < k; ++i) {
-    for (std::size_t j = i + 2; j < k; ++j) gap2 = std::min(gap2, dist2(d.inner[i], d.inner[j]));
-    if (i >= 1) gap2 = std::min(gap2, dist2(d.inner[i], layout_.pos[chain.a]));
-    if (i + 2 <= k) gap2 = std::min(gap2, dist2(d.inner[i], layout_.pos[chain.b]));
+  // Within the chain: each station against the chain's edges it is not on (a sharp turn at a
+  // station brings the previous station close to the next edge).
+  const std::size_t n = chain.edges.size();
+  if (n >= 2) {
+    std::vector<double> corner_arc(sh.size(), 0.0);
+    for (std::size_t i = 1; i < sh.size(); ++i) corner_arc[i] = corner_arc[i - 1] + std::sqrt(dist2(sh[i - 1], sh[i]));
+    // Squared distance from p to the drawing between arc lengths s0 and s1.
+    const auto to_stretch = [&](XY p, double s0, double s1) {
+      double best = kInf;
+      for (std::size_t i = 1; i < sh.size(); ++i) {
+        const double a0 = corner_arc[i - 1], a1 = corner_arc[i];
+        if (a1 <= s0 || a0 >= s1 || a1 - a0 <= 0) continue;
+        const double t0 = (std::max(a0, s0) - a0) / (a1 - a0), t1 = (std::min(a1, s1) - a0) / (a1 - a0);
+        const XY u = sh[i - 1], w = sh[i];
+        best = std::min(best, point_segment_distance2(p, {u.x + t0 * (w.x - u.x), u.y + t0 * (w.y - u.y)},
+                                                      {u.x + t1 * (w.x - u.x), u.y + t1 * (w.y - u.y)}));
+      }
+      return best;
+    };
+    for (std::size_t i = 0; i <= n; ++i) {
+      const XY p = i == 0 ? layout_.pos[chain.a] : i == n ? layout_.pos[chain.b] : d.inner[i - 1];
+      if (i >= 2) gap2 = std::min(gap2, to_stretch(p, 0, d.arc[i - 1]));
+      if (i + 2 <= n) gap2 = std::min(gap2, to_stretch(p, d.arc[i + 1], d.arc[n]));
+    }
   }
   return std::sqrt(gap2);
 }
@@ -533,6 +571,11 @@ void BendSearch::setup() {
   double edge_sum = 0;
   for (const auto& path : layout_.paths) edge_sum += polyline_length(path);
   gap_ = p_.gap_share * p_.gap_margin * (layout_.paths.empty() ? unit_ : edge_sum / layout_.paths.size());
+  // An edge is a station's clearance to the next edge along its line: it keeps min(gap_, what
+  // it had), and at least min_edge_share of its target length.
+  edge_floor_.resize(layout_.paths.size());
+  for (std::size_t e = 0; e < layout_.paths.size(); ++e)
+    edge_floor_[e] = std::max(p_.min_edge_share * g_.min_length[e], std::min(gap_, polyline_length(layout_.paths[e])));
   for (std::size_t c = 0; c < m; ++c) {
     const auto& chain = chains_[c];
     for (auto v : chain.inner) chain_of_[v] = static_cast<std::uint32_t>(c);
@@ -584,25 +627,46 @@ void BendSearch::setup() {
   for (std::size_t c = 0; c < m; ++c) {
     drawn_[c].cost = chain_cost(c, drawn_[c]);
     bool ok = true;
-    gap_floor_[c] = clearance(c, drawn_[c], ok);
+    gap_floor_[c] = drawn_[c].clear = clearance(c, drawn_[c], ok);
   }
   anchor_floor_.assign(n, 0);
   for (std::uint32_t v = 0; v < n; ++v)
     if (!ends_[v].empty()) anchor_floor_[v] = anchor_clearance(v);
+  anchor_clear_ = anchor_floor_;
+}
+
+// The gap asked for follows the mean edge as it is now, and every chain's and anchor's
+// clearance is measured afresh (others' moves change them).
+void BendSearch::refresh_clearances() {
+  double edge_sum = 0;
+  for (const auto& d : drawn_) edge_sum += d.arc.back();
+  if (!layout_.paths.empty()) gap_ = p_.gap_share * p_.gap_margin * edge_sum / layout_.paths.size();
+  for (std::size_t c = 0; c < chains_.size(); ++c) {
+    bool ok = true;
+    drawn_[c].clear = clearance(c, drawn_[c], ok);
+    drawn_[c].cost = chain_cost(c, drawn_[c]);
+    gap_floor_[c] = std::min(gap_floor_[c], drawn_[c].clear);
+  }
+  for (std::uint32_t v = 0; v < g_.pos.size(); ++v)
+    if (!ends_[v].empty()) {
+      anchor_clear_[v] = anchor_clearance(v);
+      anchor_floor_[v] = std::min(anchor_floor_[v], anchor_clear_[v]);
+    }
 }
 
 // Redraws chain c between its anchors as they are, when a drawing with a lower cost is valid.
 bool BendSearch::redraw_chain(std::size_t c) {
   if (fixed_[c]) return false;
   const auto& chain = chains_[c];
-  const double current = drawn_[c].cost;
+  const double current = drawn_[c].cost + gap_cost(drawn_[c].clear);
   auto queue = candidates(c);
   for (Drawn d; queue.next(d);) {
     if (d.cost >= current - 1e-9) break;
     if (!ports_ok(chain.a, c, &d.shape) || !ports_ok(chain.b, c, &d.shape)) continue;
     bool crossing_ok = true;
     const double gap = clearance(c, d, crossing_ok, gap_floor_[c] - eps_);
-    if (!crossing_ok || gap < gap_floor_[c] - eps_) continue;
+    if (!crossing_ok || gap < gap_floor_[c] - eps_ || d.cost + gap_cost(gap) >= current - 1e-9) continue;
+    d.clear = gap;
     install(c, std::move(d));
     gap_floor_[c] = std::max(gap_floor_[c], gap);
     return true;
@@ -647,10 +711,10 @@ bool BendSearch::try_move(std::uint32_t v, XY to, double& gain) {
   for (const auto& end : ends_[v])
     if (std::find(mine.begin(), mine.end(), end.chain) == mine.end()) mine.push_back(end.chain);
   std::vector<Drawn> saved;
-  double before = p_.w_displacement * dist2(from, target_[v]) / (unit_ * unit_);
+  double before = p_.w_displacement * dist2(from, target_[v]) / (unit_ * unit_) + gap_cost(anchor_clear_[v]);
   for (auto c : mine) {
     saved.push_back(drawn_[c]);
-    before += drawn_[c].cost;
+    before += drawn_[c].cost + gap_cost(drawn_[c].clear);
   }
   std::vector<double> floors;
   for (auto c : mine) floors.push_back(gap_floor_[c]);
@@ -670,7 +734,8 @@ bool BendSearch::try_move(std::uint32_t v, XY to, double& gain) {
       bool crossing_ok = true;
       const double gap = clearance(c, d, crossing_ok, gap_floor_[c] - eps_);
       if (!crossing_ok || gap < gap_floor_[c] - eps_) continue;
-      after += d.cost;
+      after += d.cost + gap_cost(gap);
+      d.clear = gap;
       install(c, std::move(d));
       pending_[c] = 0;
       gap_floor_[c] = std::max(gap_floor_[c], gap);
@@ -680,10 +745,12 @@ bool BendSearch::try_move(std::uint32_t v, XY to, double& gain) {
     ok = placed;
   }
   const double anchor_gap = ok ? anchor_clearance(v) : 0;
+  after += gap_cost(anchor_gap);
   if (ok && ports_ok(v) && anchor_gap >= anchor_floor_[v] - eps_ && before - after > gain) {
     gain = before - after;
     for (auto c : mine) pending_[c] = 0;
     anchor_floor_[v] = std::max(anchor_floor_[v], anchor_gap);
+    anchor_clear_[v] = anchor_gap;
     return true;
   }
   layout_.pos[v] = from;
@@ -751,7 +818,7 @@ void BendSearch::run_phase(BendReductionReport& report, Clock::time_point until)
   for (int round = 0; round < p_.max_rounds && !out_of_time(); ++round) {
     ++report.rounds;
     fit_targets();
-    for (std::size_t c = 0; c < chains_.size(); ++c) drawn_[c].cost = chain_cost(c, drawn_[c]);
+    refresh_clearances();
     std::size_t changes = 0;
     for (std::size_t c = 0; c < chains_.size() && !out_of_time(); ++c)
       if (redraw_chain(c)) ++changes, ++report.reshaped;
@@ -776,6 +843,7 @@ void BendSearch::run(BendReductionReport& report) {
   p_.w_bend *= 1000;
   p_.w_turn *= 1000;
   p_.w_displacement = p_.w_displacement_polish;
+  p_.w_gap = p_.w_gap_polish;
   run_phase(report, started + budget);
   report.timed_out = phase1_timed_out || out_of_time();
   write_back();

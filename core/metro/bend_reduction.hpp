@@ -13,13 +13,18 @@
 //   - an anchor moves (to a point where an incident chain becomes straight, two chains meet
 //     straight, or a small step) when its chains, redrawn, lower the objective
 //         w_bend * bends + w_turn * sharp turns + w_displacement * sum |p - geo fit|^2 / l^2
-//       + w_length * sum ln(length / target)^2;
+//       + w_length * sum ln(length / target)^2
+//       + w_gap * sum max(0, gap - clearance) / gap   (over chains, anchors and edges),
+//     where gap is `gap_share` of the mean edge as it is now and a chain's clearance is its
+//     stations' distance to stations they are not joined to and to edges they are not on (an
+//     edge's own length is its stations' clearance to the next edge along the line);
 //   - every change keeps the drawing valid: no crossing that was not there, each anchor's edges
-//     leave in distinct directions in the same circular order, no station closer than
-//     `gap_share` of the mean edge to a station it is not joined to or to an edge it is not on
-//     (where the start was already closer, no closer than it was), chains no shorter than
+//     leave in distinct directions in the same circular order, no clearance below the gap
+//     where it was not already (and there no lower than it was), no edge shorter than the gap
+//     or `min_edge_share` of its target (unless it started shorter), chains no shorter than
 //     `min_length_share` of their target.
-// A local search with a time limit: it stops when a round improves nothing.
+// Two phases: bends first; then the geography and the clearance, without adding a bend.
+// A local search with a time limit: a phase stops when a round improves nothing.
 
 #include "metro/layout_graph.hpp"
 
@@ -33,6 +38,8 @@ struct BendReductionParams {
   double min_length_share = 0.7;   // chain length >= this * its target length...
   double min_edge_share = 0.5;     // ...and every edge's >= this * its own
   double w_bend = 1.0;
+  double w_gap = 2.0;              // per clearance (or edge) short of the gap, times the shortfall's share
+  double w_gap_polish = 8.0;       // the same in the second phase
   double w_turn = 0.15;            // per 45 degrees of a bend's turn beyond the first 45
   double w_displacement = 0.05;    // per squared target length of a node's distance from the geography
   double w_displacement_polish = 0.3;  // the same in the second phase, which may not add bends...
