@@ -80,22 +80,33 @@ TopologyGuard make_topology_guard(const LayoutGraph& g, const std::vector<XY>& s
 bool move_keeps_topology(const TopologyGuard& guard, const LayoutGraph& g, const std::vector<XY>& pos, std::uint32_t node,
                          XY to) {
   const XY from = pos[node];
-  // Crossings of the node's edges.
+  // Crossings of the node's edges: exactly the expected ones (segments whose bounding boxes
+  // are apart cannot cross: the cheap test first, this runs for every node and iteration).
   for (auto e : guard.incident[node]) {
     const XY far = pos[other_end(g, e, node)];
+    const double x0 = std::min(to.x, far.x), x1 = std::max(to.x, far.x), y0 = std::min(to.y, far.y), y1 = std::max(to.y, far.y);
     const auto& expected = guard.crossing[e];
+    std::size_t found = 0;
     for (std::uint32_t f = 0; f < g.edges.size(); ++f) {
-      if (f == e || shares_node(g, e, f)) continue;
-      bool now = segments_intersect(to, far, pos[g.edges[f].first], pos[g.edges[f].second]);
-      if (now != std::binary_search(expected.begin(), expected.end(), f)) return false;
+      const XY c = pos[g.edges[f].first], d = pos[g.edges[f].second];
+      if (std::max(c.x, d.x) < x0 || std::min(c.x, d.x) > x1 || std::max(c.y, d.y) < y0 || std::min(c.y, d.y) > y1) continue;
+      if (f == e || shares_node(g, e, f) || !segments_intersect(to, far, c, d)) continue;
+      if (!std::binary_search(expected.begin(), expected.end(), f)) return false;
+      ++found;
     }
+    if (found != expected.size()) return false;
   }
   // No node swept over by an edge (nor hit by the node itself).
   for (auto e : guard.incident[node]) {
     const auto far_node = other_end(g, e, node);
     const XY far = pos[far_node];
-    for (std::uint32_t k = 0; k < pos.size(); ++k)
-      if (k != node && k != far_node && strictly_inside(from, to, far, pos[k])) return false;
+    const double x0 = std::min({from.x, to.x, far.x}), x1 = std::max({from.x, to.x, far.x});
+    const double y0 = std::min({from.y, to.y, far.y}), y1 = std::max({from.y, to.y, far.y});
+    for (std::uint32_t k = 0; k < pos.size(); ++k) {
+      const XY p = pos[k];
+      if (p.x < x0 || p.x > x1 || p.y < y0 || p.y > y1) continue;
+      if (k != node && k != far_node && strictly_inside(from, to, far, p)) return false;
+    }
   }
   for (std::uint32_t k = 0; k < pos.size(); ++k)
     if (k != node && pos[k].x == to.x && pos[k].y == to.y) return false;
