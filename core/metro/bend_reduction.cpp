@@ -144,7 +144,7 @@ class BendSearch {
   Drawn materialize(std::size_t c, Proposal& p) const;
   double shape_bound(std::size_t c, const std::vector<XY>& shape, const std::vector<double>* arc) const;
   double clearance(std::size_t c, const Drawn& d, bool& crossing_ok, double floor = 0) const;
-  double anchor_clearance(std::uint32_t v) const;
+  double anchor_clearance(std::uint32_t v, bool* ok = nullptr) const;
   std::vector<double> port_angles(std::uint32_t v, std::size_t c = SIZE_MAX, const std::vector<XY>* shape = nullptr) const;
   bool ports_ok(std::uint32_t v, std::size_t c = SIZE_MAX, const std::vector<XY>* shape = nullptr) const;
   void install(std::size_t c, Drawn d);
@@ -370,7 +370,7 @@ CandidateQueue BendSearch::candidates(std::size_t c) const {
 double BendSearch::clearance(std::size_t c, const Drawn& d, bool& crossing_ok, double floor) const {
   const auto& chain = chains_[c];
   const Box box = box_of(d.shape);
-  double gap2 = gap_ * gap_;
+  double gap2 = gap_ * gap_, pair_min = gap_ * gap_;
   const double floor2 = floor * floor;
   crossing_ok = true;
   for (std::size_t e = 0; e < chain.edges.size(); ++e)
@@ -446,16 +446,34 @@ double BendSearch::clearance(std::size_t c, const Drawn& d, bool& crossing_ok, d
       }
     }
     // Clearance: the other chain's nodes against this one, this one's inner nodes against it.
+    // Neither side may get closer than its own floor allows: the other's anchors theirs, the
+    // other chain its own (else a chain with a low floor could crowd one with a high one).
+    const double before_pair = gap2;
     for (auto v : {other.a, other.b})
       if (!mine(v)) {
+        gap2 = gap_ * gap_;
         near_shape(layout_.pos[v], d.shape);
         for (const auto& q : d.inner) gap2 = std::min(gap2, dist2(q, layout_.pos[v]));
+        const double need = std::min(anchor_floor_[v], gap_) - eps_;
+        if (need > 0 && gap2 < need * need) {
+          crossing_ok = false;
+          return 0;
+        }
+        pair_min = std::min(pair_min, gap2);
       }
+    gap2 = gap_ * gap_;
     for (const auto& p : drawn_[o].inner) {
       near_shape(p, d.shape);
       for (const auto& q : d.inner) gap2 = std::min(gap2, dist2(p, q));
     }
     for (const auto& q : d.inner) near_shape(q, os);
+    const double need = std::min(gap_floor_[o], gap_) - eps_;
+    if (need > 0 && gap2 < need * need) {
+      crossing_ok = false;
+      return 0;
+    }
+    gap2 = std::min({gap2, pair_min, before_pair});
+    pair_min = gap_ * gap_;
     if (gap2 < floor2) return std::sqrt(gap2);
   }
   // Within the chain: each station against the chain's edges it is not on (a sharp turn at a
@@ -487,8 +505,9 @@ double BendSearch::clearance(std::size_t c, const Drawn& d, bool& crossing_ok, d
 }
 
 // The smallest distance (capped at gap_) from anchor v to nodes it is not joined to and to
-// chains that do not end at it.
-double BendSearch::anchor_clearance(std::uint32_t v) const {
+// chains that do not end at it. With `ok`: false when v is closer to a chain than that chain's
+// floor.
+double BendSearch::anchor_clearance(std::uint32_t v, bool* ok) const {
   const XY p = layout_.pos[v];
   Box box;
   box.add(p);
@@ -498,8 +517,12 @@ double BendSearch::anchor_clearance(std::uint32_t v) const {
     const auto& chain = chains_[o];
     const auto& d = drawn_[o];
     const bool incident = chain.a == v || chain.b == v;
-    if (!incident)
-      for (std::size_t i = 1; i < d.shape.size(); ++i) gap = std::min(gap, point_segment_distance(p, d.shape[i - 1], d.shape[i]));
+    if (!incident) {
+      double pair = gap_;
+      for (std::size_t i = 1; i < d.shape.size(); ++i) pair = std::min(pair, point_segment_distance(p, d.shape[i - 1], d.shape[i]));
+      if (ok && pair < std::min(gap_floor_[o], gap_) - eps_) *ok = false;
+      gap = std::min(gap, pair);
+    }
     for (std::size_t i = 0; i < d.inner.size(); ++i) {
       const bool joined = (chain.a == v && i == 0) || (chain.b == v && i + 1 == d.inner.size());
       if (!joined) gap = std::min(gap, std::sqrt(dist2(p, d.inner[i])));
@@ -623,16 +646,19 @@ void BendSearch::setup() {
       if (hits > 0) crossings_[{static_cast<std::uint32_t>(c), static_cast<std::uint32_t>(o)}] = hits;
     }
   fit_targets();
+  // The floors are what the start has: measured with no floor in force (all zero), then set.
   gap_floor_.assign(m, 0);
+  anchor_floor_.assign(n, 0);
   for (std::size_t c = 0; c < m; ++c) {
     drawn_[c].cost = chain_cost(c, drawn_[c]);
     bool ok = true;
-    gap_floor_[c] = drawn_[c].clear = clearance(c, drawn_[c], ok);
+    drawn_[c].clear = clearance(c, drawn_[c], ok);
   }
-  anchor_floor_.assign(n, 0);
+  anchor_clear_.assign(n, 0);
   for (std::uint32_t v = 0; v < n; ++v)
-    if (!ends_[v].empty()) anchor_floor_[v] = anchor_clearance(v);
-  anchor_clear_ = anchor_floor_;
+    if (!ends_[v].empty()) anchor_clear_[v] = anchor_clearance(v);
+  for (std::size_t c = 0; c < m; ++c) gap_floor_[c] = drawn_[c].clear;
+  anchor_floor_ = anchor_clear_;
 }
 
 // The gap asked for follows the mean edge as it is now, and every chain's and anchor's
@@ -744,7 +770,7 @@ bool BendSearch::try_move(std::uint32_t v, XY to, double& gain) {
     }
     ok = placed;
   }
-  const double anchor_gap = ok ? anchor_clearance(v) : 0;
+  const double anchor_gap = ok ? anchor_clearance(v, &ok) : 0;
   after += gap_cost(anchor_gap);
   if (ok && ports_ok(v) && anchor_gap >= anchor_floor_[v] - eps_ && before - after > gain) {
     gain = before - after;

@@ -35,8 +35,8 @@ namespace tourmap::metro {
 struct BendReductionParams {
   double gap_share = 0.5;          // clearance, in mean edge lengths (the "breathing" rule)
   double gap_margin = 1.05;        // ...asked with this margin, so rounding never breaks it
-  double min_length_share = 0.7;   // chain length >= this * its target length...
-  double min_edge_share = 0.5;     // ...and every edge's >= this * its own
+  double min_length_share = 0.5;   // chain length >= this * its target length...
+  double min_edge_share = 0.35;    // ...and every edge's >= this * its own (the gap rule keeps edges from getting short)
   double w_bend = 1.0;
   double w_gap = 2.0;              // per clearance (or edge) short of the gap, times the shortfall's share
   double w_gap_polish = 8.0;       // the same in the second phase
