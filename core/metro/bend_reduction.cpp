@@ -100,6 +100,34 @@ struct Proposal {
 
 class BendSearch;
 
+// A cycle's chain (it starts and ends at one anchor) split in two halves at a middle station,
+// which becomes an anchor of the search: else nothing could move its stations (a loop such as
+// Heathrow's, drawn tiny by the router, would stay tiny). `split_at` gets those stations.
+std::vector<LayoutChain> split_cycles(std::vector<LayoutChain> chains, std::vector<std::uint32_t>& split_at) {
+  std::vector<LayoutChain> out;
+  for (auto& chain : chains) {
+    if (chain.a != chain.b || chain.edges.size() < 2) {
+      out.push_back(std::move(chain));
+      continue;
+    }
+    const std::size_t s = chain.edges.size() / 2;  // edges [0, s) and [s, n)
+    const std::uint32_t x = chain.inner[s - 1];
+    split_at.push_back(x);
+    LayoutChain first, second;
+    first.a = chain.a, first.b = x, second.a = x, second.b = chain.b;
+    const auto cut = [](const auto& v, std::size_t from, std::size_t to) {
+      return std::vector<typename std::decay_t<decltype(v)>::value_type>(v.begin() + static_cast<std::ptrdiff_t>(from),
+                                                                          v.begin() + static_cast<std::ptrdiff_t>(to));
+    };
+    first.edges = cut(chain.edges, 0, s), first.forward = cut(chain.forward, 0, s), first.inner = cut(chain.inner, 0, s - 1);
+    second.edges = cut(chain.edges, s, chain.edges.size()), second.forward = cut(chain.forward, s, chain.edges.size());
+    second.inner = cut(chain.inner, s, chain.inner.size());
+    out.push_back(std::move(first));
+    out.push_back(std::move(second));
+  }
+  return out;
+}
+
 // The drawings of one chain in increasing order of cost, worked out lazily: a proposal is
 // evaluated only when its bound could beat the best evaluated one.
 class CandidateQueue {
@@ -120,7 +148,7 @@ class BendSearch {
 
  public:
   BendSearch(const LayoutGraph& g, Layout& layout, const BendReductionParams& params)
-      : g_(g), layout_(layout), p_(params), chains_(layout_chains(g)) {}
+      : g_(g), layout_(layout), p_(params), chains_(split_cycles(layout_chains(g), split_at_)) {}
 
   void run(BendReductionReport& report);
 
@@ -159,6 +187,7 @@ class BendSearch {
   const LayoutGraph& g_;
   Layout& layout_;
   BendReductionParams p_;  // a copy: the polish phase changes its weights
+  std::vector<std::uint32_t> split_at_;               // stations where a cycle was split (see split_cycles)
   std::vector<LayoutChain> chains_;
   std::vector<Drawn> drawn_;                          // per chain, as it is now
   std::vector<Box> box_;                              // per chain
@@ -175,6 +204,12 @@ class BendSearch {
   std::vector<XY> target_;                            // per node: geography fitted to the layout
   std::vector<double> chain_target_;                  // per chain: sum of target lengths
   double unit_ = 1, eps_ = 1e-9, gap_ = 0;
+  // How close a chain or anchor may come to another whose floor is `floor`: not below it (strict),
+  // or, while bends come first, not below the smallest floor anywhere (the drawing's minimum
+  // clearance never drops).
+  bool strict_pairs_ = false;
+  double global_floor_ = 0;
+  double pair_floor(double floor) const { return (strict_pairs_ ? std::min(floor, gap_) : std::min(floor, global_floor_)) - eps_; }
   Clock::time_point deadline_;
 };
 
@@ -408,7 +443,12 @@ double BendSearch::clearance(std::size_t c, const Drawn& d, bool& crossing_ok, d
         return 0;
       }
   for (std::size_t o = 0; o < chains_.size(); ++o) {
-    if (o == c || pending_[o] || !box.overlaps(box_[o], gap_)) continue;
+    if (o == c || pending_[o]) continue;
+    // A pair that crossed at the start must still cross as often (a geographic crossing lost is
+    // a line moved round the end of another): it is checked even when far apart.
+    const auto expected = crossings_.find(ordered(static_cast<std::uint32_t>(c), static_cast<std::uint32_t>(o)));
+    const int must_cross = expected == crossings_.end() ? 0 : expected->second;
+    if (!must_cross && !box.overlaps(box_[o], gap_)) continue;
     const auto& other = chains_[o];
     const auto& os = drawn_[o].shape;
     int crossings = 0;
@@ -438,12 +478,9 @@ double BendSearch::clearance(std::size_t c, const Drawn& d, bool& crossing_ok, d
         }
       }
     }
-    if (crossings > 0) {
-      auto it = crossings_.find(ordered(static_cast<std::uint32_t>(c), static_cast<std::uint32_t>(o)));
-      if (it == crossings_.end() || crossings > it->second) {
-        crossing_ok = false;
-        return 0;
-      }
+    if (crossings != must_cross) {
+      crossing_ok = false;
+      return 0;
     }
     // Clearance: the other chain's nodes against this one, this one's inner nodes against it.
     // Neither side may get closer than its own floor allows: the other's anchors theirs, the
@@ -454,7 +491,7 @@ double BendSearch::clearance(std::size_t c, const Drawn& d, bool& crossing_ok, d
         gap2 = gap_ * gap_;
         near_shape(layout_.pos[v], d.shape);
         for (const auto& q : d.inner) gap2 = std::min(gap2, dist2(q, layout_.pos[v]));
-        const double need = std::min(anchor_floor_[v], gap_) - eps_;
+        const double need = pair_floor(anchor_floor_[v]);
         if (need > 0 && gap2 < need * need) {
           crossing_ok = false;
           return 0;
@@ -467,7 +504,7 @@ double BendSearch::clearance(std::size_t c, const Drawn& d, bool& crossing_ok, d
       for (const auto& q : d.inner) gap2 = std::min(gap2, dist2(p, q));
     }
     for (const auto& q : d.inner) near_shape(q, os);
-    const double need = std::min(gap_floor_[o], gap_) - eps_;
+    const double need = pair_floor(gap_floor_[o]);
     if (need > 0 && gap2 < need * need) {
       crossing_ok = false;
       return 0;
@@ -520,7 +557,7 @@ double BendSearch::anchor_clearance(std::uint32_t v, bool* ok) const {
     if (!incident) {
       double pair = gap_;
       for (std::size_t i = 1; i < d.shape.size(); ++i) pair = std::min(pair, point_segment_distance(p, d.shape[i - 1], d.shape[i]));
-      if (ok && pair < std::min(gap_floor_[o], gap_) - eps_) *ok = false;
+      if (ok && pair < pair_floor(gap_floor_[o])) *ok = false;
       gap = std::min(gap, pair);
     }
     for (std::size_t i = 0; i < d.inner.size(); ++i) {
@@ -594,11 +631,11 @@ void BendSearch::setup() {
   double edge_sum = 0;
   for (const auto& path : layout_.paths) edge_sum += polyline_length(path);
   gap_ = p_.gap_share * p_.gap_margin * (layout_.paths.empty() ? unit_ : edge_sum / layout_.paths.size());
-  // An edge is a station's clearance to the next edge along its line: it keeps min(gap_, what
-  // it had), and at least min_edge_share of its target length.
+  // An edge is a station's clearance to the next edge along its line: it keeps the gap and
+  // min_edge_share of its target length, or what it had when it started shorter.
   edge_floor_.resize(layout_.paths.size());
   for (std::size_t e = 0; e < layout_.paths.size(); ++e)
-    edge_floor_[e] = std::max(p_.min_edge_share * g_.min_length[e], std::min(gap_, polyline_length(layout_.paths[e])));
+    edge_floor_[e] = std::min(polyline_length(layout_.paths[e]) - eps_, std::max(p_.min_edge_share * g_.min_length[e], gap_));
   for (std::size_t c = 0; c < m; ++c) {
     const auto& chain = chains_[c];
     for (auto v : chain.inner) chain_of_[v] = static_cast<std::uint32_t>(c);
@@ -637,10 +674,9 @@ void BendSearch::setup() {
           bool shared = false;
           for (auto v : {chains_[o].a, chains_[o].b})
             if ((v == chains_[c].a || v == chains_[c].b) && dist2(hit.at, layout_.pos[v]) <= eps_ * eps_ * 4) shared = true;
-          if (hit.kind == SegmentContact::overlap || !shared) {
+          if (hit.kind == SegmentContact::point && !shared) {  // (an overlap is never kept: see clearance)
             ++hits;
-            if (hit.kind == SegmentContact::point)
-              crossing_edges_.insert(ordered(edge_at(chains_[c], drawn_[c], i, hit.at), edge_at(chains_[o], drawn_[o], k, hit.at)));
+            crossing_edges_.insert(ordered(edge_at(chains_[c], drawn_[c], i, hit.at), edge_at(chains_[o], drawn_[o], k, hit.at)));
           }
         }
       if (hits > 0) crossings_[{static_cast<std::uint32_t>(c), static_cast<std::uint32_t>(o)}] = hits;
@@ -678,6 +714,10 @@ void BendSearch::refresh_clearances() {
       anchor_clear_[v] = anchor_clearance(v);
       anchor_floor_[v] = std::min(anchor_floor_[v], anchor_clear_[v]);
     }
+  global_floor_ = gap_;
+  for (double f : gap_floor_) global_floor_ = std::min(global_floor_, f);
+  for (std::uint32_t v = 0; v < g_.pos.size(); ++v)
+    if (!ends_[v].empty()) global_floor_ = std::min(global_floor_, anchor_floor_[v]);
 }
 
 // Redraws chain c between its anchors as they are, when a drawing with a lower cost is valid.
@@ -819,6 +859,11 @@ bool BendSearch::move_anchor(std::uint32_t v) {
 std::size_t BendSearch::total_bends() const {
   std::size_t bends = 0;
   for (const auto& d : drawn_) bends += turns_of(d.shape, eps_).first;
+  // A reader sees the turn where a cycle was split as a bend of its chain.
+  for (auto v : split_at_) {
+    const auto angles = port_angles(v);
+    if (angles.size() == 2 && std::abs(std::remainder(angles[0] - angles[1], 2 * M_PI)) < M_PI - 1e-6) ++bends;
+  }
   return bends;
 }
 
@@ -870,6 +915,7 @@ void BendSearch::run(BendReductionReport& report) {
   p_.w_turn *= 1000;
   p_.w_displacement = p_.w_displacement_polish;
   p_.w_gap = p_.w_gap_polish;
+  strict_pairs_ = true;
   run_phase(report, started + budget);
   report.timed_out = phase1_timed_out || out_of_time();
   write_back();

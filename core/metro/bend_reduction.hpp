@@ -23,7 +23,11 @@
 //     where it was not already (and there no lower than it was), no edge shorter than the gap
 //     or `min_edge_share` of its target (unless it started shorter), chains no shorter than
 //     `min_length_share` of their target.
-// Two phases: bends first; then the geography and the clearance, without adding a bend.
+// Two phases: bends first, when a chain may come closer to another than that one's floor as
+// long as the drawing's smallest clearance does not drop; then the geography and the clearance,
+// without adding a bend, where no chain may crowd another below its floor.
+// A cycle (a chain from an anchor back to it, as Heathrow's loop) is split at a middle station
+// so that the search can move its stations.
 // A local search with a time limit: a phase stops when a round improves nothing.
 
 #include "metro/layout_graph.hpp"
@@ -34,9 +38,9 @@ namespace tourmap::metro {
 
 struct BendReductionParams {
   double gap_share = 0.5;          // clearance, in mean edge lengths (the "breathing" rule)
-  double gap_margin = 1.05;        // ...asked with this margin, so rounding never breaks it
+  double gap_margin = 1.12;        // ...asked with this margin (the mean edge still moves after it is measured)
   double min_length_share = 0.5;   // chain length >= this * its target length...
-  double min_edge_share = 0.35;    // ...and every edge's >= this * its own (the gap rule keeps edges from getting short)
+  double min_edge_share = 0.5;     // ...and every edge's >= this * its own
   double w_bend = 1.0;
   double w_gap = 2.0;              // per clearance (or edge) short of the gap, times the shortfall's share
   double w_gap_polish = 8.0;       // the same in the second phase

@@ -84,6 +84,23 @@ TEST(BendReduction, AShortTerminusEdgeGetsItsShareOfTheLine) {
   for (std::size_t v = 1; v < 4; ++v) EXPECT_GT(layout.pos[v].x, layout.pos[v - 1].x) << "stations keep their order";
 }
 
+TEST(BendReduction, ALoopDrawnTinyOpensUp) {
+  // A line ending in a loop (as at Heathrow): 0 - 1, then 1 - 2 - 3 - 1. The router drew the
+  // loop a tenth of the line's edge; the loop is one chain from 1 back to 1.
+  auto g = graph({{0, 0}, {1000, 0}, {2000, 500}, {2000, -500}}, {{0, 1}, {1, 2}, {2, 3}, {3, 1}});
+  Layout layout;
+  layout.pos = {{0, 0}, {10, 0}, {11, 1}, {11, -1}};
+  layout.paths = {{{0, 0}, {10, 0}}, {{10, 0}, {11, 1}}, {{11, 1}, {11, -1}}, {{11, -1}, {10, 0}}};
+  ASSERT_LT(min_gap_over_mean_edge(g, layout), 0.3);
+  const auto before = measure_layout(g, layout);
+  reduce_bends(g, layout);
+  const auto after = measure_layout(g, layout);
+  EXPECT_GE(min_gap_over_mean_edge(g, layout), 0.5);
+  EXPECT_EQ(after.octilinear_share, 1.0);
+  EXPECT_LE(after.added_crossings, before.added_crossings);
+  EXPECT_LE(after.order_violations, before.order_violations);
+}
+
 TEST(BendReduction, KeepsAGeographicCrossingAndAddsNone) {
   // Two lines that cross without a shared station, each drawn with jogs.
   auto g = graph({{-2000, 0}, {0, -300}, {2000, 0}, {0, -2000}, {300, 0}, {0, 2000}}, {{0, 1}, {1, 2}, {3, 4}, {4, 5}});
