@@ -53,7 +53,7 @@ struct BendReductionParams {
   double move_radius = 1.5;        // anchor moves, in mean target lengths
   std::size_t evaluations_per_anchor = 24;  // candidate positions fully evaluated per anchor and round
   int max_rounds = 12;
-  double time_limit_ms = 250.0;
+  double time_limit_ms = 250.0;     // of this thread's CPU time (a busy machine gets the same layout)
 };
 
 struct BendReductionReport {
@@ -62,7 +62,7 @@ struct BendReductionReport {
   std::size_t reshaped = 0;        // chains redrawn with anchors in place
   std::size_t moved = 0;           // anchor moves accepted
   int rounds = 0;
-  double time_ms = 0;
+  double time_ms = 0;              // wall time
   bool timed_out = false;
 };
 
