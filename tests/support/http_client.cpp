@@ -37,7 +37,12 @@ HttpResult http_request(unsigned short port, const std::string& method, const st
   http::response_parser<http::string_body> parser;
   parser.body_limit(256u << 20);
   if (method == "HEAD") parser.skip(true);
-  http::read(stream, buffer, parser);
+  // Asynchronously, so that the stream's timeout applies: a server that never answers fails the
+  // test naming the request instead of hanging it until ctest kills it.
+  beast::error_code read_error;
+  http::async_read(stream, buffer, parser, [&](beast::error_code e, std::size_t) { read_error = e; });
+  ioc.run();
+  if (read_error) throw std::runtime_error(method + " " + raw_target + ": no answer (" + read_error.message() + ")");
   auto res = parser.release();
   HttpResult out;
   out.status = static_cast<int>(res.result_int());
