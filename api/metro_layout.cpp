@@ -13,7 +13,7 @@
 namespace tourmap::api {
 namespace {
 
-constexpr int kLayoutVersion = 6;  // 6: bend reduction, quality.compare (the metric tool's figures)
+constexpr int kLayoutVersion = 7;  // 6: bend reduction, quality.compare (the metric tool's figures); 7: clearance in the bend reduction
 using util::Clock;
 using util::ms_since;
 
