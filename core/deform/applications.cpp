@@ -4,11 +4,7 @@
 #include "geo/polygon.hpp"
 #include "util/stop.hpp"
 
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Orthogonal_k_neighbor_search.h>
-#include <CGAL/Search_traits_2.h>
-#include <CGAL/Search_traits_adapter.h>
-#include <CGAL/property_map.h>
+#include "geo/nearest_point_tree.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -97,14 +93,9 @@ std::vector<double> focus_edge_scales(const PlanarNetwork& net, const std::vecto
 }
 
 struct NodeIndex::Impl {
-  using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
-  using Point = Kernel::Point_2;
-  using PointAndIndex = std::tuple<Point, std::uint32_t>;
-  using Traits = CGAL::Search_traits_adapter<PointAndIndex, CGAL::Nth_of_tuple_property_map<0, PointAndIndex>,
-                                             CGAL::Search_traits_2<Kernel>>;
-  using Search = CGAL::Orthogonal_k_neighbor_search<Traits>;
-  using Tree = Search::Tree;
-  Tree tree;
+  using Point = geo::nearest::Point;
+  using Search = geo::nearest::Search;
+  geo::nearest::Tree tree;
 };
 
 NodeIndex::NodeIndex(const std::vector<XY>& nodes) : impl_(std::make_unique<Impl>()) {

@@ -13,13 +13,7 @@ namespace tourmap::metro {
 
 ScaleShift fit_scale_translation(const std::vector<XY>& from, const std::vector<XY>& to) {
   std::size_t n = from.size();
-  XY cf{0, 0}, ct{0, 0};
-  for (std::size_t i = 0; i < n; ++i) {
-    cf.x += from[i].x / n;
-    cf.y += from[i].y / n;
-    ct.x += to[i].x / n;
-    ct.y += to[i].y / n;
-  }
+  const XY cf = centroid(from, n), ct = centroid(to, n);
   double num = 0, den = 0;
   for (std::size_t i = 0; i < n; ++i) {
     num += (from[i].x - cf.x) * (to[i].x - ct.x) + (from[i].y - cf.y) * (to[i].y - ct.y);

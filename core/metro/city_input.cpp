@@ -1,10 +1,6 @@
 #include "metro/city_input.hpp"
 
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Orthogonal_k_neighbor_search.h>
-#include <CGAL/Search_traits_2.h>
-#include <CGAL/Search_traits_adapter.h>
-#include <CGAL/property_map.h>
+#include "geo/nearest_point_tree.hpp"
 
 #include <stdexcept>
 #include <tuple>
@@ -21,13 +17,8 @@ CityMetroInput make_city_metro_input(const model::MetroNetwork& net, const std::
 
   // Proximity rho_i (5.4.1): nearest station per POI by a kd-tree in the plane, then the
   // geodesic distance to it.
-  using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
-  using Point = Kernel::Point_2;
-  using PointAndIndex = std::tuple<Point, std::uint32_t>;
-  using Traits = CGAL::Search_traits_adapter<PointAndIndex, CGAL::Nth_of_tuple_property_map<0, PointAndIndex>,
-                                             CGAL::Search_traits_2<Kernel>>;
-  using Search = CGAL::Orthogonal_k_neighbor_search<Traits>;
-  Search::Tree stations;
+  using geo::nearest::Point, geo::nearest::Search;
+  geo::nearest::Tree stations;
   for (std::uint32_t i = 0; i < net.nodes.size(); ++i)
     if (net.nodes[i].is_station()) stations.insert({Point(d.graph.pos[i].x, d.graph.pos[i].y), i});
   stations.build();

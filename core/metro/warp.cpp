@@ -15,13 +15,7 @@ Helmert fit_helmert(const std::vector<XY>& from, const std::vector<XY>& to) {
   std::size_t n = std::min(from.size(), to.size());
   if (n < 2) return {};
   // Centre both sets: the fit of (a, b) decouples from the translation.
-  XY cf{0, 0}, ct{0, 0};
-  for (std::size_t i = 0; i < n; ++i) {
-    cf.x += from[i].x / n;
-    cf.y += from[i].y / n;
-    ct.x += to[i].x / n;
-    ct.y += to[i].y / n;
-  }
+  const XY cf = centroid(from, n), ct = centroid(to, n);
   double sxx = 0, a_num = 0, b_num = 0;
   for (std::size_t i = 0; i < n; ++i) {
     double x = from[i].x - cf.x, y = from[i].y - cf.y, u = to[i].x - ct.x, v = to[i].y - ct.y;

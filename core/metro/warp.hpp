@@ -28,6 +28,16 @@ struct Helmert {
 // Least squares over point pairs; needs two distinct points (else the identity).
 Helmert fit_helmert(const std::vector<XY>& from, const std::vector<XY>& to);
 
+// The mean of the first n points.
+inline XY centroid(const std::vector<XY>& pts, std::size_t n) {
+  XY c{0, 0};
+  for (std::size_t i = 0; i < n; ++i) {
+    c.x += pts[i].x / n;
+    c.y += pts[i].y / n;
+  }
+  return c;
+}
+
 class Warp {
  public:
   Warp(const std::vector<XY>& from, const std::vector<XY>& to);

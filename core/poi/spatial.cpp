@@ -1,9 +1,7 @@
 #include "poi/spatial.hpp"
 
-#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
-#include <CGAL/Orthogonal_k_neighbor_search.h>
-#include <CGAL/Search_traits_2.h>
-#include <CGAL/Search_traits_adapter.h>
+#include "geo/nearest_point_tree.hpp"
+
 #include <CGAL/Spatial_sort_traits_adapter_2.h>
 #include <CGAL/hilbert_sort.h>
 #include <CGAL/property_map.h>
@@ -14,13 +12,11 @@
 namespace tourmap::poi {
 namespace {
 
-using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
-using Point = Kernel::Point_2;
-using PointAndIndex = std::tuple<Point, std::uint32_t>;
-using Traits = CGAL::Search_traits_adapter<PointAndIndex, CGAL::Nth_of_tuple_property_map<0, PointAndIndex>,
-                                           CGAL::Search_traits_2<Kernel>>;
-using Search = CGAL::Orthogonal_k_neighbor_search<Traits>;
-using Tree = Search::Tree;
+using Kernel = geo::nearest::Kernel;
+using Point = geo::nearest::Point;
+using PointAndIndex = geo::nearest::PointAndIndex;
+using Search = geo::nearest::Search;
+using Tree = geo::nearest::Tree;
 
 }  // namespace
 
