@@ -43,9 +43,10 @@ struct MetroLimits {
   //     the oldest waiting one (counted; a later request for that layout schedules it again);
   //   - CBC gets `improve_mip_s`, what the synchronous auto polish had: with larger limits it
   //     overran them in its root node on the sample cities and was killed, winning nothing;
-  //   - its child is killed `improve_mip_grace_s` past that (the server's solver; requests
-  //     get 1 s): CBC took 1.2-1.5 s of wall time for 0.5 s when idle, so 1 s lost most
-  //     improvements under load, and no client waits for this one;
+  //   - its child is killed once it has used `improve_mip_grace_s` of CPU time past that
+  //     (api::ChildClock::cpu; requests get 1 s of wall time): CBC overruns its limit in the
+  //     root LP (1.2-1.5 s for 0.5 s when idle), and a nice-10 child on a busy machine gets
+  //     little CPU, so wall-time kills lost every improvement under load; no client waits;
   //   - an improvement of a city version replaced meanwhile is dropped; shutdown stops the
   //     running one (its CBC child is killed) and drops the waiting ones.
   std::size_t improve_queue = 8;

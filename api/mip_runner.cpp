@@ -10,6 +10,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <cstring>
 #include <iostream>
 #include <iterator>
 #include <sstream>
@@ -29,10 +30,29 @@ bool write_all(int fd, const std::string& data) {
   return true;
 }
 
+// The CPU seconds (user + system) process `pid` has used, from /proc/PID/stat (fields 14 and 15,
+// in clock ticks, after the command name in parentheses); -1 when it cannot be read.
+double process_cpu_seconds(pid_t pid) {
+  char path[64];
+  std::snprintf(path, sizeof path, "/proc/%d/stat", static_cast<int>(pid));
+  std::FILE* f = std::fopen(path, "r");
+  if (!f) return -1;
+  char buf[1024];
+  const std::size_t n = std::fread(buf, 1, sizeof buf - 1, f);
+  std::fclose(f);
+  buf[n] = 0;
+  const char* p = std::strrchr(buf, ')');
+  if (!p) return -1;
+  // After ")": state (field 3), then fields 4..13, then utime (14) and stime (15).
+  unsigned long long utime = 0, stime = 0;
+  if (std::sscanf(p + 1, " %*c %*d %*d %*d %*d %*d %*u %*u %*u %*u %*u %llu %llu", &utime, &stime) != 2) return -1;
+  return static_cast<double>(utime + stime) / static_cast<double>(sysconf(_SC_CLK_TCK));
+}
+
 }  // namespace
 
-MipSolver child_process_mip_solver(std::string executable, double grace_s) {
-  return [executable, grace_s](const metro::MipModel& model, double time_limit_s, double gap) {
+MipSolver child_process_mip_solver(std::string executable, double grace_s, ChildClock clock) {
+  return [executable, grace_s, clock](const metro::MipModel& model, double time_limit_s, double gap) {
     metro::MipResult failed;
     failed.status = "error";
     int in_pipe[2], out_pipe[2];
@@ -69,15 +89,17 @@ MipSolver child_process_mip_solver(std::string executable, double grace_s) {
     bool written = write_all(in_pipe[1], metro::serialize(model));
     close(in_pipe[1]);
     std::string output;
-    auto deadline = std::chrono::steady_clock::now() +
-                    std::chrono::milliseconds(static_cast<long long>((time_limit_s + grace_s) * 1000));
+    const double allowed_s = time_limit_s + grace_s;
+    const double wall_s = clock == ChildClock::wall ? allowed_s : 20 * allowed_s;
+    auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(static_cast<long long>(wall_s * 1000));
     // The request's own deadline and client (util/stop.hpp): a solve nobody waits for is killed.
     const util::StopToken* stop = util::current_stop();
     bool killed = false, stopped = false;
     while (written) {
       auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now()).count();
       stopped = stop && stop->stop_requested();
-      if (left <= 0 || stopped) {
+      const bool over_cpu = clock == ChildClock::cpu && process_cpu_seconds(pid) > allowed_s;
+      if (left <= 0 || stopped || over_cpu) {
         kill(pid, SIGKILL);
         killed = true;
         break;

@@ -155,7 +155,8 @@ int serve(const Config& config, const std::function<void(unsigned short)>& on_li
   api::DeformService deform(catalog);
   const api::MetroLimits metro_limits;
   api::MetroService metro(catalog, api::child_process_mip_solver("/proc/self/exe"), metro_limits,
-                          api::child_process_mip_solver("/proc/self/exe", metro_limits.improve_mip_grace_s));
+                          api::child_process_mip_solver("/proc/self/exe", metro_limits.improve_mip_grace_s,
+                                                                       api::ChildClock::cpu));
   api::AppContext ctx{db, catalog, deform, metro, TOURMAP_VERSION};
   net::io_context ioc(static_cast<int>(config.io_threads));
   EventHub events(ioc, db, std::chrono::milliseconds(2000));

@@ -26,6 +26,10 @@ using Clock = std::chrono::steady_clock;
 
 constexpr const char* kCity = "freiburg";
 const std::string kLayout = "/api/v1/cities/freiburg/layout";
+// How long a background job may take here. About 1.5 s idle, but the job runs at nice 10 and
+// CBC's budget is CPU time (api/mip_runner.hpp): beside other tests on both cores it gets a
+// tenth of a core or less, and it still must finish and win.
+constexpr std::chrono::seconds kJobWait{90};
 
 // Imports Freiburg (again: a new city version) into the running server's database.
 void import_freiburg(const LiveServer& live) {
@@ -89,8 +93,8 @@ TEST(LayoutImprovement, DefaultLayoutIsFastThenImprovedAndAnnounced) {
   EXPECT_FALSE(fast["solver"].contains("mip")) << fast["solver"];
   EXPECT_LT(first_s, 2.0);  // tens of milliseconds unless the machine is very busy
 
-  const auto event = next_event(ws, "layout_improved", 20s);
-  ASSERT_FALSE(event.is_null()) << "no layout_improved event within 20 s; the layout now: "
+  const auto event = next_event(ws, "layout_improved", kJobWait);
+  ASSERT_FALSE(event.is_null()) << "no layout_improved event within " << kJobWait.count() << " s; the layout now: "
                                 << nlohmann::json::parse(live.get(kLayout).body)["solver"]
                                 << " (has the fast path got so good that the MIP no longer wins on Freiburg?)";
   EXPECT_EQ(event["city"], kCity);
@@ -150,7 +154,7 @@ TEST(LayoutImprovement, RepeatedDefaultRequestsScheduleOnce) {
     // Scheduled until the MIP has run, then the improved layout.
     EXPECT_TRUE(state == "scheduled" || state == "applied") << state;
   }
-  wait_idle(live, 20s);
+  wait_idle(live, kJobWait);
   EXPECT_EQ(gauge(live, "tourmap_layout_improvements_scheduled"), 1);
   EXPECT_EQ(live.get_json(kLayout)["solver"]["improvement"], "applied");
   EXPECT_EQ(gauge(live, "tourmap_layout_improvements_scheduled"), 1);
@@ -168,7 +172,7 @@ TEST(LayoutImprovement, ImprovementOfAnOlderCityVersionIsDropped) {
   const auto old = live.get_json(kLayout);
   ASSERT_EQ(old["solver"]["improvement"], "scheduled");
   import_freiburg(live);
-  wait_idle(live, 30s);
+  wait_idle(live, kJobWait);
   EXPECT_EQ(gauge(live, "tourmap_layout_improvements_stale"), 1);
   // Whatever Vienna's MIP did, no event names Freiburg.
   for (auto ev = next_event(ws, "layout_improved", 1s); !ev.is_null(); ev = next_event(ws, "layout_improved", 1s))
