@@ -10,7 +10,10 @@
 #include <boost/asio/post.hpp>
 #include <boost/beast/websocket.hpp>
 
+#include <sys/socket.h>
+
 #include <atomic>
+#include <cerrno>
 #include <cstdio>
 #include <limits>
 
@@ -379,27 +382,32 @@ void HttpSession::refuse_admission(ComputePool::Admission admission, bool heavy,
   send(finish_response(std::move(r), facts, state_.config), route_label_);
 }
 
+// Watches the connection while its request computes, to stop the computation when the client
+// leaves. The peek must not block: a wait can complete without anything to read (a readiness
+// event left over from the request's own bytes, which were read already), and a blocking peek
+// then waits for the client's next bytes while holding this connection's strand, so the
+// answer could never be sent (seen as a test request unanswered for 60 s).
 void HttpSession::watch_client(std::shared_ptr<std::atomic<bool>> cancelled) {
   watching_client_ = true;
-  stream_.socket().async_wait(net::socket_base::wait_read,
-                              [self = shared_from_this(), cancelled](beast::error_code ec) {
-                                self->watching_client_ = false;
-                                if (ec) return;  // stop_watching_client (the answer is ready) or a socket error
-                                // Readable: either the client pipelined its next request (kept for
-                                // later: a peek does not consume it) or it closed the connection.
-                                char byte = 0;
-                                beast::error_code peek_ec;
-                                const auto n = self->stream_.socket().receive(
-                                    net::buffer(&byte, 1), net::socket_base::message_peek, peek_ec);
-                                if (peek_ec || n == 0) cancelled->store(true);
-                              });
+  stream_.socket().async_wait(net::socket_base::wait_read, [self = shared_from_this(), cancelled](beast::error_code ec) {
+    // Stopped (the answer is ready; also when this completion was queued before the cancel) or
+    // a socket error.
+    if (ec || !self->watching_client_) return;
+    self->watching_client_ = false;
+    char byte = 0;
+    const auto n = ::recv(self->stream_.socket().native_handle(), &byte, 1, MSG_PEEK | MSG_DONTWAIT);
+    if (n > 0) return;  // the client pipelined its next request: kept for later (a peek does not consume it)
+    if (n < 0 && (errno == EAGAIN || errno == EWOULDBLOCK || errno == EINTR))
+      return self->watch_client(cancelled);  // nothing to read after all: watch on
+    cancelled->store(true);                  // end of stream or a socket error: the client left
+  });
 }
 
 void HttpSession::stop_watching_client() {
   if (!watching_client_) return;
+  watching_client_ = false;
   beast::error_code ec;
   stream_.socket().cancel(ec);  // only the wait is pending while a request computes
-  watching_client_ = false;
 }
 
 void HttpSession::finish_abandoned() {

@@ -50,8 +50,14 @@ class LiveServer {
 
   std::string db() const { return dir.file("t.db"); }
   unsigned short port() const { return server->port(); }
+  // A request the server does not answer fails the test with what the server's threads are
+  // doing (tests/support/server_process.hpp).
   HttpResult get(const std::string& target, const std::map<std::string, std::string>& headers = {}) const {
-    return http_get(port(), target, headers);
+    try {
+      return http_get(port(), target, headers);
+    } catch (const std::exception& e) {
+      throw std::runtime_error(std::string(e.what()) + "\n" + server->diagnose());
+    }
   }
   nlohmann::json get_json(const std::string& target) const {
     auto r = get(target);

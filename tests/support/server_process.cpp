@@ -1,5 +1,6 @@
 #include "server_process.hpp"
 
+#include <dirent.h>
 #include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
@@ -60,8 +61,11 @@ int wait_exit(int pid, int timeout_s, int out_fd, std::string& output) {
     }
     if (out_fd < 0) std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
+  // What is left in the pipe (not until EOF: a child of the server may still hold it open).
   if (out_fd >= 0)
-    while (read_some(out_fd, output, 0) && output.size() < (1u << 24)) {
+    for (std::size_t before = output.size() + 1; output.size() != before && output.size() < (1u << 24);) {
+      before = output.size();
+      if (!read_some(out_fd, output, 0)) break;
     }
   return WIFEXITED(status) ? WEXITSTATUS(status) : -WTERMSIG(status);
 }
@@ -89,6 +93,7 @@ ServerProcess::ServerProcess(const std::string& binary, const std::string& db, c
     std::smatch m;
     if (std::regex_search(output_, m, listening)) {
       port_ = static_cast<unsigned short>(std::stoi(m[1]));
+      reader_ = std::thread([this] { drain(); });
       return;
     }
   }
@@ -100,16 +105,83 @@ ServerProcess::~ServerProcess() {
   if (pid_ > 0) stop(10);
 }
 
+void ServerProcess::drain() {
+  std::string chunk;
+  while (!stop_draining_) {
+    chunk.clear();
+    const bool open = read_some(out_fd_, chunk, 100);
+    if (!chunk.empty()) {
+      std::lock_guard lock(output_mutex_);
+      if (output_.size() < (1u << 24)) output_ += chunk;
+    }
+    if (!open) return;
+  }
+}
+
 CommandResult ServerProcess::stop(int timeout_s) {
   CommandResult r;
   if (pid_ <= 0) return r;
   kill(pid_, SIGTERM);
-  r.exit_code = wait_exit(pid_, timeout_s, out_fd_, output_);
+  // The reader goes first: wait_exit reads the rest (a MIP child that inherited the pipe may
+  // keep it open after the server is gone, so the reader is told to stop, not left to see EOF).
+  stop_draining_ = true;
+  if (reader_.joinable()) reader_.join();
+  std::string output;
+  {
+    std::lock_guard lock(output_mutex_);
+    output = std::move(output_);
+  }
+  r.exit_code = wait_exit(pid_, timeout_s, out_fd_, output);
   close(out_fd_);
   pid_ = -1;
   out_fd_ = -1;
-  r.output = output_;
+  r.output = output;
+  {
+    std::lock_guard lock(output_mutex_);
+    output_ = std::move(output);
+  }
   return r;
+}
+
+namespace {
+
+std::string file_text(const std::string& path) {
+  std::string out;
+  if (int fd = open(path.c_str(), O_RDONLY); fd >= 0) {
+    char buf[4096];
+    ssize_t n;
+    while ((n = read(fd, buf, sizeof buf)) > 0) out.append(buf, static_cast<std::size_t>(n));
+    close(fd);
+  }
+  while (!out.empty() && (out.back() == '\n' || out.back() == 0)) out.pop_back();
+  return out;
+}
+
+}  // namespace
+
+std::string ServerProcess::diagnose() const {
+  if (pid_ <= 0) return "the server is not running";
+  std::string out = "server " + std::to_string(pid_) + " threads (name, /proc stat state, wait channel, syscall):\n";
+  const std::string task_dir = "/proc/" + std::to_string(pid_) + "/task";
+  if (DIR* dir = opendir(task_dir.c_str())) {
+    while (dirent* e = readdir(dir)) {
+      if (e->d_name[0] == '.') continue;
+      const std::string t = task_dir + "/" + e->d_name;
+      const auto stat = file_text(t + "/stat");
+      const auto close_paren = stat.rfind(')');
+      const char state = close_paren != std::string::npos && close_paren + 2 < stat.size() ? stat[close_paren + 2] : '?';
+      out += "  " + std::string(e->d_name) + " " + file_text(t + "/comm") + " " + state + " " + file_text(t + "/wchan") +
+             " [" + file_text(t + "/syscall") + "]\n";
+    }
+    closedir(dir);
+  }
+  // Stacks, where gdb exists and may attach (ptrace rules permitting); bounded in time.
+  const auto gdb = run_command({"/usr/bin/timeout", "30", "gdb", "-p", std::to_string(pid_), "-batch", "-nx", "-ex",
+                                "thread apply all bt 30"});
+  if (gdb.exit_code == 0) out += "stacks:\n" + gdb.output + "\n";
+  std::lock_guard lock(output_mutex_);
+  out += "the server printed (last 4 KiB):\n" + output_.substr(output_.size() > 4096 ? output_.size() - 4096 : 0);
+  return out;
 }
 
 }  // namespace tourmap::test
