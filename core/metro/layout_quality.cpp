@@ -102,6 +102,34 @@ std::size_t count_path_crossings(const std::vector<std::vector<XY>>& paths,
   return crossing_path_pairs(paths, edges).size();
 }
 
+std::size_t count_order_violations(const LayoutGraph& g, const Layout& L) {
+  const std::size_t n = g.pos.size();
+  std::vector<std::vector<std::uint32_t>> incident(n);
+  for (std::uint32_t e = 0; e < g.edges.size(); ++e) {
+    incident[g.edges[e].first].push_back(e);
+    incident[g.edges[e].second].push_back(e);
+  }
+  auto geo_other = [&](std::uint32_t e, std::uint32_t v) { return g.pos[g.edges[e].first == v ? g.edges[e].second : g.edges[e].first]; };
+  std::size_t violations = 0;
+  for (std::uint32_t v = 0; v < n; ++v) {
+    const auto& inc = incident[v];
+    if (inc.size() < 3) continue;
+    std::vector<std::uint32_t> geo = inc, lay = inc;
+    std::sort(geo.begin(), geo.end(), [&](auto x, auto y) {
+      return angle(g.pos[v], geo_other(x, v)) < angle(g.pos[v], geo_other(y, v));
+    });
+    std::sort(lay.begin(), lay.end(), [&](auto x, auto y) {
+      return angle(L.pos[v], first_step(g, L, x, v)) < angle(L.pos[v], first_step(g, L, y, v));
+    });
+    bool distinct = true;
+    for (std::size_t i = 1; i < lay.size(); ++i)
+      distinct = distinct && std::abs(angle(L.pos[v], first_step(g, L, lay[i], v)) -
+                                      angle(L.pos[v], first_step(g, L, lay[i - 1], v))) > 1e-9;
+    if (!distinct || !same_cycle(geo, lay)) ++violations;
+  }
+  return violations;
+}
+
 LayoutQuality measure_layout(const LayoutGraph& g, const Layout& L) {
   LayoutQuality q;
   std::size_t n = g.pos.size(), m = g.edges.size();
@@ -128,7 +156,6 @@ LayoutQuality measure_layout(const LayoutGraph& g, const Layout& L) {
     incident[g.edges[e].first].push_back(e);
     incident[g.edges[e].second].push_back(e);
   }
-  auto geo_other = [&](std::uint32_t e, std::uint32_t v) { return g.pos[g.edges[e].first == v ? g.edges[e].second : g.edges[e].first]; };
   for (std::uint32_t v = 0; v < n; ++v) {
     const auto& inc = incident[v];
     // Bends along lines through the station: a line on exactly two of its edges should pass straight.
@@ -142,20 +169,8 @@ LayoutQuality measure_layout(const LayoutGraph& g, const Layout& L) {
       double diff = std::fmod(std::abs(a - b), 2 * M_PI);
       if (std::abs(diff - M_PI) > 1e-6) ++q.bends;
     }
-    if (inc.size() < 3) continue;
-    std::vector<std::uint32_t> geo = inc, lay = inc;
-    std::sort(geo.begin(), geo.end(), [&](auto x, auto y) {
-      return angle(g.pos[v], geo_other(x, v)) < angle(g.pos[v], geo_other(y, v));
-    });
-    std::sort(lay.begin(), lay.end(), [&](auto x, auto y) {
-      return angle(L.pos[v], first_step(g, L, x, v)) < angle(L.pos[v], first_step(g, L, y, v));
-    });
-    bool distinct = true;
-    for (std::size_t i = 1; i < lay.size(); ++i)
-      distinct = distinct && std::abs(angle(L.pos[v], first_step(g, L, lay[i], v)) -
-                                      angle(L.pos[v], first_step(g, L, lay[i - 1], v))) > 1e-9;
-    if (!distinct || !same_cycle(geo, lay)) ++q.order_violations;
   }
+  q.order_violations = count_order_violations(g, L);
 
   auto crossing = crossing_path_pairs(L.paths, g.edges);
   std::vector<std::vector<XY>> straight;

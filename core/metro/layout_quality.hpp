@@ -23,6 +23,10 @@ struct LayoutQuality {
 
 LayoutQuality measure_layout(const LayoutGraph& g, const Layout& layout);
 
+// Stations (of degree >= 3) whose edges leave in another circular order than geographically,
+// or two of them in the same direction.
+std::size_t count_order_violations(const LayoutGraph& g, const Layout& layout);
+
 // Pairs of polylines (one per edge) that intersect anywhere but at a shared end node: the
 // pairs (i < j, sorted), and their count.
 std::vector<std::pair<std::size_t, std::size_t>> crossing_path_pairs(

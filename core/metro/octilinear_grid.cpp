@@ -57,12 +57,15 @@ std::vector<std::vector<char>> chain_crossings(const LayoutGraph& g, const std::
 using Rank = std::tuple<std::size_t, std::size_t, std::size_t>;
 
 // Attempts are ranked by unrouted or overlapping chains, then by added crossings (pairs
-// that do not cross geographically), then by all crossings.
+// that do not cross geographically) and stations whose edges leave in another circular order
+// (or two in one direction: the later passes keep what the router gives them), then by all
+// crossings.
 Rank rank(const LayoutGraph& g, const EdgePairs& geo_pairs, const octi::AttemptResult& a) {
   auto pairs = crossing_path_pairs(a.layout.paths, g.edges);
   EdgePairs added;
   std::set_difference(pairs.begin(), pairs.end(), geo_pairs.begin(), geo_pairs.end(), std::back_inserter(added));
-  return std::tuple{a.failed + a.overlapping, added.size(), pairs.size()};
+  const std::size_t order = a.failed ? 0 : count_order_violations(g, a.layout);
+  return std::tuple{a.failed + a.overlapping, added.size() + order, pairs.size()};
 }
 
 }  // namespace
