@@ -46,7 +46,9 @@ CityLayoutResult layout_city(const CityMetroInput& in, const std::vector<model::
   auto g = in.graph;
   g.min_length = params.worth_lengths ? visual_worth_lengths(g, out.node_worth, params.l_const)
                                       : std::vector<double>(g.edges.size(), params.l_const);
-  auto start = stress_layout(g, scale_to_lengths(g));
+  auto stretched = g;  // the stress layout's targets (prelayout.hpp); the layout keeps g's minimums
+  stretched.min_length = stress_lengths(g);
+  auto start = stress_layout(stretched, scale_to_lengths(stretched));
   out.timing.prelayout = ms_since(t);
   GridRouteParams route;
   route.time_limit_ms = params.time_limit_s * 1000.0;

@@ -94,7 +94,9 @@ Layout route_octilinear(const LayoutGraph& g, const std::vector<XY>& start, cons
     if (a <= 2) variant.corridor_cost = 0;
     const double cell = a == 2 ? p.cell / 2 : p.cell;
     auto attempt = octi::RoutingAttempt(g, start, chains, anchor, geo_crossing, variant, cell).run(first, share);
+    // The next attempt routes first what this one could not route, or could not route in order.
     first = attempt.failed_chains;
+    first.insert(first.end(), attempt.out_of_order_chains.begin(), attempt.out_of_order_chains.end());
     auto attempt_rank = rank(g, geo_pairs, attempt);
     if (!have || attempt_rank < best_rank) {
       best = std::move(attempt);

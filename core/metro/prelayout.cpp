@@ -5,6 +5,7 @@
 #include <Eigen/Sparse>
 #include <Eigen/SparseCholesky>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <queue>
@@ -25,6 +26,16 @@ double length_scale(const LayoutGraph& g) {
 }
 
 }  // namespace
+
+std::vector<double> stress_lengths(const LayoutGraph& g, double geo_share) {
+  const double s = geo_share * length_scale(g);
+  std::vector<double> out(g.min_length);
+  for (std::size_t i = 0; i < g.edges.size(); ++i) {
+    auto [u, v] = g.edges[i];
+    out[i] = std::max(out[i], s * std::hypot(g.pos[v].x - g.pos[u].x, g.pos[v].y - g.pos[u].y));
+  }
+  return out;
+}
 
 std::vector<XY> scale_to_lengths(const LayoutGraph& g) {
   const double s = length_scale(g);

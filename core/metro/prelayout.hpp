@@ -18,6 +18,16 @@ std::vector<XY> stretch_to_lengths(const LayoutGraph& g, double lambda = 0.05);
 // (crossings, circular orders) as the geography.
 std::vector<XY> scale_to_lengths(const LayoutGraph& g);
 
+// The lengths the stress layout aims at: an edge's minimum length, or `geo_share` of its
+// geographic length (at the scale that gives the mean edge the mean minimum length) where that
+// is longer. Long edges keep most of their geographic length, so the periphery is not pulled in
+// towards the centre and stations stay near their geography, while short central edges still
+// get their minimum, so a dense centre spreads. (With the minimum lengths alone, station
+// displacement was 3.7 % on Chicago and 2.7 % on London with uniform lengths; with these
+// 3.1 % and 2.3 %, and fewer bends. geo_share 0.6-0.8 all do about as well: 0.7 is in the
+// middle, not a value that suits one network.)
+std::vector<double> stress_lengths(const LayoutGraph& g, double geo_share = 0.7);
+
 struct StressOptions {
   int iterations = 60;
   double anchor = 0.05;        // pull towards `init`, relative to the stress weights

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <deque>
 #include <queue>
+#include <tuple>
 
 namespace tourmap::metro::octi {
 
@@ -31,7 +32,8 @@ RoutingAttempt::RoutingAttempt(const LayoutGraph& g, const std::vector<XY>& star
       grid_path_(chains.size()),
       ports_of_(chains.size(), {-1, -1}),
       crossable_(geo_crossing),
-      crossed_(chains.size()) {
+      crossed_(chains.size()),
+      out_of_order_(chains.size(), false) {
   result_.grid_nodes = grid_.used.size();
   for (auto& a : port_chain_) a.fill(-1);
 }
@@ -276,6 +278,8 @@ void RoutingAttempt::commit(int ci, const std::vector<int>& path) {
   }
   int out_port = direction_between(grid_, first, path[1]);
   int in_port = direction_between(grid_, last, path[path.size() - 2]);
+  for (auto [v, port, front] : {std::tuple{c.nodes.front(), out_port, true}, std::tuple{c.nodes.back(), in_port, false}})
+    if (!keeps_circular_order(anchor_ports_[v], end_angles_[v], end_angle(g_, c, front), port)) out_of_order_[ci] = true;
   port_chain_[c.nodes.front()][out_port] = ci;
   port_chain_[c.nodes.back()][in_port] = ci;
   anchor_ports_[c.nodes.front()].push_back({out_port, end_angle(g_, c, true)});
@@ -441,6 +445,8 @@ void RoutingAttempt::build_layout() {
     for (int node : grid_path_[ci]) pts.push_back(grid_.point(node));
     unroll_chain(g_, c, simplify_collinear(pts), L);
   }
+  for (std::size_t ci = 0; ci < chains_.size(); ++ci)
+    if (out_of_order_[ci]) result_.out_of_order_chains.push_back(static_cast<int>(ci));
   for (std::size_t e = 0; e < g_.edges.size(); ++e)
     if (L.paths[e].empty()) L.paths[e] = {L.pos[g_.edges[e].first], L.pos[g_.edges[e].second]};
 }

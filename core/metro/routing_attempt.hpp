@@ -27,6 +27,7 @@ struct AttemptResult {
   std::size_t crossing_routes = 0;  // chains that cross paths they do not cross geographically
   std::size_t failed = 0;           // edges
   std::vector<int> failed_chains;
+  std::vector<int> out_of_order_chains;  // left a station by a port out of its circular order
   std::size_t grid_nodes = 0;
   bool timed_out = false;
 };
@@ -93,6 +94,7 @@ class RoutingAttempt {
   // Which chains each chain may still cross: those it crosses geographically, once each.
   std::vector<std::vector<char>> crossable_;
   std::vector<std::vector<int>> crossed_;               // partners of the crossings on each path
+  std::vector<bool> out_of_order_;                      // per chain: ever committed out of order
   bool crossing_any_ = false;                           // fallback: any path may be crossed
   std::vector<float> history_;                          // per grid node: how often it was fought over
 };

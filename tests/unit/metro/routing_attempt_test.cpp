@@ -52,6 +52,7 @@ TEST(RoutingAttempt, SmallNetworkIsOctilinearWithoutCrossings) {
   auto r = run(n);
   EXPECT_EQ(r.failed, 0u);
   EXPECT_TRUE(r.failed_chains.empty());
+  EXPECT_TRUE(r.out_of_order_chains.empty());
   EXPECT_EQ(r.overlapping, 0u);
   EXPECT_EQ(r.crossing_routes, 0u);
   EXPECT_FALSE(r.timed_out);
@@ -163,6 +164,23 @@ TEST(RoutingAttempt, InteriorStationsLieOnTheirChainsPath) {
   EXPECT_EQ(r.layout.paths[8].back().x, r.layout.pos[9].x);
   EXPECT_EQ(r.layout.paths[9].front().x, r.layout.pos[9].x);
   EXPECT_EQ(r.layout.paths[9].front().y, r.layout.pos[9].y);
+}
+
+// A hub with four arms whose start positions (from a pre-layout) are not in the geographic
+// order of the arms: east, north, west, south geographically, but north, east, west, south
+// in the start. Without a price on the order, the router follows the start and breaks the
+// order, and reports the chains it routed out of order, so that route_octilinear routes them
+// first in its next attempt.
+TEST(RoutingAttempt, ChainsRoutedOutOfOrderAreReported) {
+  auto n = network({{0, 0}, {1500, 0}, {0, 1500}, {-1500, 0}, {0, -1500}}, {{0, 1}, {0, 2}, {0, 3}, {0, 4}},
+                   {{0}, {1}, {2}, {3}});
+  n.start = {{0, 0}, {0, 15}, {15, 0}, {-15, 0}, {0, -15}};
+  GridRouteParams free_order;
+  free_order.order_penalty = 0;
+  free_order.port_plan_weight = 0;
+  auto broken = run(n, free_order);
+  EXPECT_GT(measure_layout(n.g, broken.layout).order_violations, 0u);
+  EXPECT_FALSE(broken.out_of_order_chains.empty());
 }
 
 }  // namespace
