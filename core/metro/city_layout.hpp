@@ -6,6 +6,7 @@
 // answer, bench/metro_bench.cpp measures it.
 
 #include "metro/bend_reduction.hpp"
+#include "metro/station_spacing.hpp"
 #include "metro/city_frame.hpp"
 #include "metro/city_input.hpp"
 #include "metro/layout_metrics.hpp"
@@ -57,6 +58,7 @@ struct CityLayoutResult {
                                      // reader counts them: along lines between interchanges)
   GridRouteReport route;
   BendReductionReport bends;
+  SpacingReport spacing;
   SolverReport solver;
   CityLayoutTimings timing;
 };

@@ -53,7 +53,7 @@ struct GridRouteParams {
   double added_crossing_cost = 60.0;             // walled in: crossing any other path
   double evict_cost = 10.0;                      // negotiating: going through another chain's path...
   double history_step = 1.0;                     // ...times 1 + history, which grows by this per fight
-  std::size_t evictions_per_chain = 6;           // negotiation budget
+  std::size_t evictions_per_chain = 2;           // negotiation budget
   double overlap_cost = 40.0;                    // last resort: per grid node shared with another path
   std::size_t max_expansions = 30000;            // per path search, more for long ones (up to 8x):
                                                  // give up on walled-in routes fast

@@ -1,0 +1,63 @@
+#pragma once
+// Room around every station (issue 13: "a centre that breathes"): no station closer than
+// `gap_share` of the mean edge to a station it is not joined to or to an edge it is not on.
+//
+// A linear program moves the stations and bend points of an octilinear layout while every
+// segment keeps its direction, so bends, octilinearity and each station's circular order stay
+// exactly as they are. With the directions fixed everything needed is linear in the points:
+//   - a point is where it is now after a similarity (scale s in [0.8, 1.25] and a shift, free:
+//     the whole map may grow) plus a move of at most `trust` mean edges per axis;
+//   - a segment p->q in octilinear direction u: n.(q - p) = 0 (n normal to u), and its length
+//     u.(q - p) >= a floor (its length now, up to `min_segment_share` of the mean edge);
+//   - an edge's length (the sum over its segments) >= its target (eq. 5.4), or its length now
+//     when that is shorter;
+//   - the mean edge M = (sum of segment lengths) / edges;
+//   - a station v clear of a segment pq: w.(v - e) >= tau M, with w the octilinear direction
+//     that separates them best now and e the segment's end nearer to v along w (it stays the
+//     nearer: the segment's direction is fixed). tau = gap_share * margin. Soft: a priced
+//     slack, bounded so that the pair comes no closer than it is now;
+//   - two segments of other edges kept apart: w.(a - b) >= min(now, delta M0), w the
+//     octilinear direction that separates them best now, a and b their nearest ends along w,
+//     so that no crossing appears among nearby pairs; farther pairs cannot meet in one round
+//     (the trust region).
+// Objective: sum |move| (L1: few points move, the rest stay) + w_slack * sum of slacks.
+// The separating directions linearise around the current layout, so the program runs in rounds,
+// each from the last one's result, and a round is kept only when the measured layout is better
+// (a larger smallest gap) and no worse otherwise (no new crossing pair or order violation,
+// still octilinear).
+// Our own model because no packaged library does octilinear compaction with these rows (OGDF's
+// compaction is orthogonal and not in Debian); CLP solves it (metro/lp_solve.hpp).
+
+#include "metro/layout_graph.hpp"
+
+#include <cstddef>
+#include <string>
+
+namespace tourmap::metro {
+
+struct SpacingParams {
+  double gap_share = 0.5;          // the rule: smallest gap >= this * mean edge
+  double margin = 1.06;            // asked with this margin (the solver's tolerance, the mean moves)
+  double segment_share = 0.15;     // delta: clearance kept between segments of other edges
+  double min_segment_share = 0.2;  // a segment's floor, in mean edges (or its length now if shorter)
+  double trust = 0.3;              // a point's move per round, in mean edges
+  double pair_radius = 1.25;       // station-segment pairs constrained: nearer than this * the gap + 2 trust
+  double w_station = 1.0, w_bend_point = 0.5;  // per unit of a point's move
+  double w_slack = 60.0;           // per unit of a clearance short of the rule
+  int max_rounds = 12;
+  double time_limit_ms = 400.0;    // this thread's CPU time for starting rounds (one in progress finishes)
+};
+
+struct SpacingReport {
+  std::string status;              // "met", "improved", "no_gain", "time_limit", "skipped", "solver"
+  double gap_before = 0, gap_after = 0;  // smallest gap / mean edge
+  int rounds = 0, accepted = 0;
+  std::size_t columns = 0, rows = 0;     // of the last program
+  double time_ms = 0;                    // wall time
+};
+
+// `g`: the graph (targets in g.min_length); `layout` octilinear, changed in place when a round
+// is kept (positions and paths; method and status stay).
+SpacingReport space_stations(const LayoutGraph& g, Layout& layout, const SpacingParams& params = {});
+
+}  // namespace tourmap::metro

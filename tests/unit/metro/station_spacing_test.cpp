@@ -1,0 +1,132 @@
+#include "metro/station_spacing.hpp"
+
+#include "metro/layout_quality.hpp"
+#include "metro/station_gap.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace tourmap::metro {
+namespace {
+
+// Two parallel lines of three stations, 10 apart along the line but only 2 apart across: every
+// station is a fifth of the mean edge from the other line. The first line also has a bend.
+struct Parallel {
+  LayoutGraph g;
+  Layout layout;
+};
+
+Parallel parallel_lines() {
+  Parallel n;
+  n.g.pos = {{0, 0}, {1000, 0}, {2000, 0}, {0, 200}, {1000, 200}, {2000, 200}};
+  n.g.edges = {{0, 1}, {1, 2}, {3, 4}, {4, 5}};
+  n.g.edge_lines = {{0}, {0}, {1}, {1}};
+  n.g.min_length.assign(4, 10.0);
+  n.layout.pos = {{0, 0}, {10, 0}, {20, 0}, {0, 2}, {10, 2}, {20, 2}};
+  n.layout.paths = {{{0, 0}, {10, 0}}, {{10, 0}, {15, 0}, {20, 0}}, {{0, 2}, {10, 2}}, {{10, 2}, {20, 2}}};
+  // A bend on the second edge of the first line: down and back up at 45 degrees.
+  n.layout.pos[2] = {20, -4};
+  n.layout.paths[1] = {{10, 0}, {16, 0}, {20, -4}};
+  return n;
+}
+
+double ratio(const LayoutGraph& g, const Layout& L) {
+  auto q = measure_layout(g, L);
+  return q.min_station_gap / q.mean_edge;
+}
+
+std::vector<double> directions(const Layout& L) {
+  std::vector<double> out;
+  for (const auto& path : L.paths)
+    for (std::size_t i = 1; i < path.size(); ++i)
+      out.push_back(std::atan2(path[i].y - path[i - 1].y, path[i].x - path[i - 1].x));
+  return out;
+}
+
+TEST(StationSpacing, MovesCrowdedLinesApartKeepingEveryDirection) {
+  auto n = parallel_lines();
+  const auto before = measure_layout(n.g, n.layout);
+  ASSERT_LT(ratio(n.g, n.layout), 0.3);
+  const auto dirs = directions(n.layout);
+  auto report = space_stations(n.g, n.layout);
+  EXPECT_EQ(report.status, "met");
+  EXPECT_GE(report.accepted, 1);
+  EXPECT_LT(report.gap_before, 0.3);
+  EXPECT_GE(report.gap_after, 0.5);
+  EXPECT_NEAR(report.gap_after, ratio(n.g, n.layout), 1e-9);
+  const auto after = measure_layout(n.g, n.layout);
+  EXPECT_EQ(after.octilinear_share, 1.0);
+  EXPECT_EQ(after.bends, before.bends);
+  EXPECT_EQ(after.crossings, 0u);
+  EXPECT_EQ(after.order_violations, 0u);
+  // Same segments, same directions: only lengths and offsets changed.
+  ASSERT_EQ(directions(n.layout).size(), dirs.size());
+  for (std::size_t i = 0; i < dirs.size(); ++i) EXPECT_NEAR(directions(n.layout)[i], dirs[i], 1e-6) << i;
+  // Every edge still runs between its stations.
+  for (std::size_t e = 0; e < n.g.edges.size(); ++e) {
+    EXPECT_NEAR(n.layout.paths[e].front().x, n.layout.pos[n.g.edges[e].first].x, 1e-9);
+    EXPECT_NEAR(n.layout.paths[e].back().y, n.layout.pos[n.g.edges[e].second].y, 1e-9);
+  }
+}
+
+TEST(StationSpacing, LeavesARoomyLayoutAlone) {
+  auto n = parallel_lines();
+  for (auto& p : n.layout.pos) p.y *= 5;  // lines 10 apart
+  for (auto& path : n.layout.paths)
+    for (auto& p : path) p.y *= 5;
+  // The bend is now no longer at 45 degrees: redraw the second edge straight.
+  n.layout.pos[2] = {20, 0};
+  n.layout.paths[1] = {{10, 0}, {20, 0}};
+  const auto copy = n.layout;
+  auto report = space_stations(n.g, n.layout);
+  EXPECT_EQ(report.status, "met");
+  EXPECT_EQ(report.rounds, 0);
+  for (std::size_t v = 0; v < copy.pos.size(); ++v) {
+    EXPECT_EQ(n.layout.pos[v].x, copy.pos[v].x);
+    EXPECT_EQ(n.layout.pos[v].y, copy.pos[v].y);
+  }
+}
+
+TEST(StationSpacing, SkipsALayoutThatIsNotOctilinear) {
+  auto n = parallel_lines();
+  n.layout.pos[5] = {20, 5};
+  n.layout.paths[3] = {{10, 2}, {20, 5}};  // 17 degrees
+  const auto copy = n.layout;
+  auto report = space_stations(n.g, n.layout);
+  EXPECT_EQ(report.status, "skipped");
+  EXPECT_EQ(report.accepted, 0);
+  EXPECT_EQ(n.layout.pos[4].y, copy.pos[4].y);
+}
+
+// Three parallel lines 1 and 1.5 apart (edges 10 long): the middle one must move away from
+// both without passing either, so the lines keep their order and nothing crosses.
+TEST(StationSpacing, ASqueezedLineStaysBetweenItsNeighbours) {
+  LayoutGraph g;
+  Layout L;
+  const double ys[] = {0, 1, 2.5};
+  for (std::uint32_t line = 0; line < 3; ++line) {
+    for (int k = 0; k < 3; ++k) {
+      g.pos.push_back({1000.0 * k, 100 * ys[line]});
+      L.pos.push_back({10.0 * k, ys[line]});
+    }
+    for (std::uint32_t k = 0; k < 2; ++k) {
+      const std::uint32_t a = 3 * line + k;
+      g.edges.push_back({a, a + 1});
+      g.edge_lines.push_back({line});
+      L.paths.push_back({L.pos[a], L.pos[a + 1]});
+    }
+  }
+  g.min_length.assign(g.edges.size(), 10.0);
+  auto report = space_stations(g, L);
+  EXPECT_EQ(report.status, "met");
+  EXPECT_GE(ratio(g, L), 0.5);
+  EXPECT_EQ(count_path_crossings(L.paths, g.edges), 0u);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_LT(L.pos[k].y, L.pos[3 + k].y) << k;
+    EXPECT_LT(L.pos[3 + k].y, L.pos[6 + k].y) << k;
+  }
+}
+
+}  // namespace
+}  // namespace tourmap::metro
