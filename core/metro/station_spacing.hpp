@@ -43,7 +43,7 @@ struct SpacingParams {
   double trust = 0.3;              // a point's move per round, in mean edges
   double pair_radius = 1.25;       // station-segment pairs constrained: nearer than this * the gap + 2 trust
   double w_station = 1.0, w_bend_point = 0.5;  // per unit of a point's move
-  double w_slack = 60.0;           // per unit of a clearance short of the rule
+  double w_slack = 300.0;          // per unit of a clearance short of the rule (at 60 London uniform stalled at 0.37)
   int max_rounds = 12;
   double time_limit_ms = 400.0;    // this thread's CPU time for starting rounds (one in progress finishes)
 };
