@@ -76,6 +76,18 @@ nlohmann::json solver_json(const metro::SolverReport& s) {
   return out;
 }
 
+nlohmann::json bend_reduction_json(const metro::BendReductionReport& b) {
+  return {{"chains", b.chains},   {"bends_before", b.bends_before}, {"bends_after", b.bends_after},
+          {"reshaped", b.reshaped}, {"moved", b.moved},             {"rounds", b.rounds},
+          {"time_ms", b.time_ms},   {"timed_out", b.timed_out}};
+}
+
+nlohmann::json spacing_json(const metro::SpacingReport& s) {
+  return {{"status", s.status},     {"gap_before", s.gap_before}, {"gap_after", s.gap_after},
+          {"rounds", s.rounds},     {"accepted", s.accepted},     {"columns", s.columns},
+          {"rows", s.rows},         {"time_ms", s.time_ms}};
+}
+
 nlohmann::json points_json(const std::vector<geo::XY>& points) {
   nlohmann::json out = nlohmann::json::array();
   for (const auto& p : points) out.push_back(xy(p));
@@ -284,22 +296,8 @@ std::string layout_body(const CityMetroData& d, const LayoutRequest& req, const 
                      {"crossing_routes", report.crossing_routes},
                      {"failed", report.failed},
                      {"attempt", report.attempt},
-                     {"bend_reduction", {{"chains", L.bends.chains},
-                                         {"bends_before", L.bends.bends_before},
-                                         {"bends_after", L.bends.bends_after},
-                                         {"reshaped", L.bends.reshaped},
-                                         {"moved", L.bends.moved},
-                                         {"rounds", L.bends.rounds},
-                                         {"time_ms", L.bends.time_ms},
-                                         {"timed_out", L.bends.timed_out}}},
-                     {"spacing", {{"status", L.spacing.status},
-                                  {"gap_before", L.spacing.gap_before},
-                                  {"gap_after", L.spacing.gap_after},
-                                  {"rounds", L.spacing.rounds},
-                                  {"accepted", L.spacing.accepted},
-                                  {"columns", L.spacing.columns},
-                                  {"rows", L.spacing.rows},
-                                  {"time_ms", L.spacing.time_ms}}}}},
+                     {"bend_reduction", bend_reduction_json(L.bends)},
+                     {"spacing", spacing_json(L.spacing)}}},
       {"timing_ms", {{"visual_worth", L.timing.visual_worth}, {"layout", L.timing.layout}, {"warp", L.timing.warp},
                      {"total", ms_since(started)}}},
       {"attribution", std::move(attribution)}};

@@ -6,7 +6,10 @@
 #include "metro/segment_geometry.hpp"
 #include "metro/station_gap.hpp"
 #include "util/elapsed.hpp"
+#include "util/stop.hpp"
 #include "util/thread_cpu_clock.hpp"
+
+#include <CGAL/box_intersection_d.h>
 
 #include <algorithm>
 #include <array>
@@ -170,6 +173,44 @@ void add_row(Program& prog, Expr e, double lo, double hi) {
   prog.model.add_row(std::move(e.terms), lo <= -kFree ? lo : lo - e.constant, hi >= kFree ? hi : hi - e.constant);
 }
 
+using Box = CGAL::Box_intersection_d::Box_with_handle_d<double, 2, std::size_t, CGAL::Box_intersection_d::ID_EXPLICIT>;
+
+// A box around a segment, grown by `pad` on every side.
+Box segment_box(const Drawing& d, std::size_t i, double pad) {
+  const XY a = d.pt[d.seg[i].p], b = d.pt[d.seg[i].q];
+  double lo[2] = {std::min(a.x, b.x) - pad, std::min(a.y, b.y) - pad};
+  double hi[2] = {std::max(a.x, b.x) + pad, std::max(a.y, b.y) + pad};
+  return Box(lo, hi, i);
+}
+
+// Candidate pairs by box overlap (CGAL's box intersection: near linear, where all pairs would
+// be quadratic: an import may hold 20,000 edges). Sorted, so the program's rows keep one order.
+// Stations with segments whose box comes within `radius`:
+std::vector<std::pair<std::uint32_t, std::size_t>> station_segment_candidates(const Drawing& d, double radius) {
+  std::vector<Box> stations, segments;
+  for (std::uint32_t v = 0; v < d.stations; ++v) {
+    double lo[2] = {d.pt[v].x - radius, d.pt[v].y - radius}, hi[2] = {d.pt[v].x + radius, d.pt[v].y + radius};
+    stations.emplace_back(lo, hi, v);
+  }
+  for (std::size_t i = 0; i < d.seg.size(); ++i) segments.push_back(segment_box(d, i, 0));
+  std::vector<std::pair<std::uint32_t, std::size_t>> out;
+  CGAL::box_intersection_d(stations.begin(), stations.end(), segments.begin(), segments.end(),
+                           [&](const Box& v, const Box& s) { out.push_back({static_cast<std::uint32_t>(v.handle()), s.handle()}); });
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+// Segment pairs whose boxes come within `radius` of each other (i < j):
+std::vector<std::pair<std::size_t, std::size_t>> segment_pair_candidates(const Drawing& d, double radius) {
+  std::vector<Box> segments;
+  for (std::size_t i = 0; i < d.seg.size(); ++i) segments.push_back(segment_box(d, i, radius / 2));
+  std::vector<std::pair<std::size_t, std::size_t>> out;
+  CGAL::box_self_intersection_d(segments.begin(), segments.end(),
+                                [&](const Box& a, const Box& b) { out.push_back(std::minmax(a.handle(), b.handle())); });
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
 Program build_program(const LayoutGraph& g, const Drawing& d, double mean, const SpacingParams& p) {
   Program prog;
   auto& m = prog.model;
@@ -215,49 +256,45 @@ Program build_program(const LayoutGraph& g, const Drawing& d, double mean, const
   // Stations clear of the segments of edges they are not on (soft). A segment's end nearer to
   // v along w stays the nearer one (its direction is fixed), so one row per pair.
   const double gap_radius = p.pair_radius * tau * mean + 2 * trust;
-  for (std::uint32_t v = 0; v < d.stations; ++v)
-    for (const auto& s : d.seg) {
-      const auto [a, b] = g.edges[s.edge];
-      if (a == v || b == v) continue;
-      if (point_segment_distance(d.pt[v], d.pt[s.p], d.pt[s.q]) >= gap_radius) continue;
-      const int w = best_separation({d.pt[v]}, {d.pt[s.p], d.pt[s.q]}).first;
-      const auto nearer = dot(kDir[w], d.pt[s.p]) >= dot(kDir[w], d.pt[s.q]) ? s.p : s.q;
-      // The slack may not let the pair come closer than it is now.
-      const double now = dot(kDir[w], minus(d.pt[v], d.pt[nearer]));
-      const int slack = m.add_column(0, std::max(0.0, tau * mean - now), p.w_slack, false, 0);
-      Expr row;
-      row.terms = {{mean_col, -tau}, {slack, 1}};
-      add_difference(row, prog, d, kDir[w], v, nearer);
-      add_row(prog, std::move(row), 0, kFree);
-      ++prog.gap_pairs;
-    }
+  util::check_stop();
+  for (const auto& [v, si] : station_segment_candidates(d, gap_radius)) {
+    const auto& s = d.seg[si];
+    const auto [a, b] = g.edges[s.edge];
+    if (a == v || b == v) continue;
+    if (point_segment_distance(d.pt[v], d.pt[s.p], d.pt[s.q]) >= gap_radius) continue;
+    const int w = best_separation({d.pt[v]}, {d.pt[s.p], d.pt[s.q]}).first;
+    const auto nearer = dot(kDir[w], d.pt[s.p]) >= dot(kDir[w], d.pt[s.q]) ? s.p : s.q;
+    // The slack may not let the pair come closer than it is now.
+    const double now = dot(kDir[w], minus(d.pt[v], d.pt[nearer]));
+    const int slack = m.add_column(0, std::max(0.0, tau * mean - now), p.w_slack, false, 0);
+    Expr row;
+    row.terms = {{mean_col, -tau}, {slack, 1}};
+    add_difference(row, prog, d, kDir[w], v, nearer);
+    add_row(prog, std::move(row), 0, kFree);
+    ++prog.gap_pairs;
+  }
 
   // Segments of other edges (or apart on one edge) kept apart by what separates them now.
   const double segment_radius = p.segment_share * mean + 2 * trust;
-  for (std::size_t i = 0; i < d.seg.size(); ++i)
-    for (std::size_t j = i + 1; j < d.seg.size(); ++j) {
-      const auto &s = d.seg[i], &t = d.seg[j];
-      if (s.p == t.p || s.p == t.q || s.q == t.p || s.q == t.q) continue;  // meet at a point: directions keep them apart
-      const XY a0 = d.pt[s.p], a1 = d.pt[s.q], b0 = d.pt[t.p], b1 = d.pt[t.q];
-      if (std::min(a0.x, a1.x) > std::max(b0.x, b1.x) + segment_radius ||
-          std::min(b0.x, b1.x) > std::max(a0.x, a1.x) + segment_radius ||
-          std::min(a0.y, a1.y) > std::max(b0.y, b1.y) + segment_radius ||
-          std::min(b0.y, b1.y) > std::max(a0.y, a1.y) + segment_radius)
-        continue;
-      if (segment_contact(a0, a1, b0, b1, 1e-9).kind != SegmentContact::none) continue;  // crossing now: it stays
-      const double apart = std::min({point_segment_distance(a0, b0, b1), point_segment_distance(a1, b0, b1),
-                                     point_segment_distance(b0, a0, a1), point_segment_distance(b1, a0, a1)});
-      if (apart >= segment_radius) continue;
-      const auto [w, now] = best_separation({a0, a1}, {b0, b1});
-      const double need = std::clamp(std::min(now, p.segment_share * mean), 0.0, kFree);
-      // The ends that are nearest along w stay the nearest (directions are fixed): one row.
-      const auto a = dot(kDir[w], a0) <= dot(kDir[w], a1) ? s.p : s.q;
-      const auto b = dot(kDir[w], b0) >= dot(kDir[w], b1) ? t.p : t.q;
-      Expr row;
-      add_difference(row, prog, d, kDir[w], a, b);
-      add_row(prog, std::move(row), need, kFree);
-      ++prog.segment_pairs;
-    }
+  util::check_stop();
+  for (const auto& [i, j] : segment_pair_candidates(d, segment_radius)) {
+    const auto &s = d.seg[i], &t = d.seg[j];
+    if (s.p == t.p || s.p == t.q || s.q == t.p || s.q == t.q) continue;  // meet at a point: directions keep them apart
+    const XY a0 = d.pt[s.p], a1 = d.pt[s.q], b0 = d.pt[t.p], b1 = d.pt[t.q];
+    if (segment_contact(a0, a1, b0, b1, 1e-9).kind != SegmentContact::none) continue;  // crossing now: it stays
+    const double apart = std::min({point_segment_distance(a0, b0, b1), point_segment_distance(a1, b0, b1),
+                                   point_segment_distance(b0, a0, a1), point_segment_distance(b1, a0, a1)});
+    if (apart >= segment_radius) continue;
+    const auto [w, now] = best_separation({a0, a1}, {b0, b1});
+    const double need = std::clamp(std::min(now, p.segment_share * mean), 0.0, kFree);
+    // The ends that are nearest along w stay the nearest (directions are fixed): one row.
+    const auto a = dot(kDir[w], a0) <= dot(kDir[w], a1) ? s.p : s.q;
+    const auto b = dot(kDir[w], b0) >= dot(kDir[w], b1) ? t.p : t.q;
+    Expr row;
+    add_difference(row, prog, d, kDir[w], a, b);
+    add_row(prog, std::move(row), need, kFree);
+    ++prog.segment_pairs;
+  }
   return prog;
 }
 
@@ -275,6 +312,7 @@ SpacingReport space_stations(const LayoutGraph& g, Layout& layout, const Spacing
   }
   report.status = "no_gain";
   for (int round = 0; round < p.max_rounds; ++round) {
+    util::check_stop();  // the request's deadline or client (a round may outlast the budget)
     const double left_ms =
         p.time_limit_ms - std::chrono::duration<double, std::milli>(util::ThreadCpuClock::now() - cpu_started).count();
     if (left_ms <= 0) {

@@ -2,6 +2,7 @@
 
 #include "metro/layout_quality.hpp"
 #include "metro/station_gap.hpp"
+#include "util/stop.hpp"
 
 #include <gtest/gtest.h>
 
@@ -126,6 +127,18 @@ TEST(StationSpacing, ASqueezedLineStaysBetweenItsNeighbours) {
     EXPECT_LT(L.pos[k].y, L.pos[3 + k].y) << k;
     EXPECT_LT(L.pos[3 + k].y, L.pos[6 + k].y) << k;
   }
+}
+
+// A request's deadline (or a client that left) stops the pass between its steps, whatever its
+// own budget: the layout is left as it was.
+TEST(StationSpacing, StopsAtTheRequestsDeadline) {
+  auto n = parallel_lines();
+  const auto copy = n.layout;
+  util::StopToken past;
+  past.deadline = util::StopToken::Clock::now() - std::chrono::seconds(1);
+  util::StopScope scope(past);
+  EXPECT_THROW(space_stations(n.g, n.layout), util::Stopped);
+  for (std::size_t v = 0; v < copy.pos.size(); ++v) EXPECT_EQ(n.layout.pos[v].y, copy.pos[v].y);
 }
 
 }  // namespace
