@@ -62,7 +62,7 @@ CityLayoutResult layout_city(const CityMetroInput& in, const std::vector<model::
   bends.time_limit_ms = std::min(g.pos.size() < 200 ? 100.0 : 1000.0, 0.25 * params.time_limit_s * 1000.0);
   reduce_bends(g, layout, bends, &out.bends);
   // Room around the stations (issue 13), the directions kept: a small share again (London
-  // takes about 5 rounds of 60-120 ms; smaller networks 1-3 rounds of 5-15 ms).
+  // takes 4-5 rounds of 60-190 ms; smaller networks 0-3 rounds of 5-15 ms).
   SpacingParams spacing;
   spacing.time_limit_ms = std::min(g.pos.size() < 200 ? 100.0 : 600.0, 0.15 * params.time_limit_s * 1000.0);
   out.spacing = space_stations(g, layout, spacing);

@@ -89,8 +89,8 @@ Layout route_octilinear(const LayoutGraph& g, const std::vector<XY>& start, cons
     // Each attempt gets its share of the time, so a hard first one leaves room for the next.
     // The first two route freely (fewest bends), the second on a grid twice as fine (room in
     // dense centres) unless all the first lacked was the circular order somewhere (then the
-    // same grid, those chains first, is enough and takes a third of the time); the third keeps
-    // paths in their corridors (so that detours do not wall stations in).
+    // same grid again, those chains first); the third keeps paths in their corridors (so that
+    // detours do not wall stations in).
     auto share = begin + (deadline - begin) * a / attempts;
     GridRouteParams variant = p;
     if (a <= 2) variant.corridor_cost = 0;
