@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <new>
+#include <stdexcept>
 
 namespace tourmap::metro::octi {
 
@@ -19,17 +22,28 @@ std::vector<int> without_loops(const std::vector<int>& path) {
 }
 
 GridRouter::GridRouter(GridGraph& grid, const GridRouteParams& p) : grid_(grid), p_(p) {
-  std::size_t states = static_cast<std::size_t>(grid.w) * grid.h * 9;
-  cost_.assign(states, kInf);
-  parent_.assign(states, -1);
-  stamp_.assign(states, 0);
+  const std::size_t states = static_cast<std::size_t>(grid.w) * grid.h * 9;
+  // Parents are kept as 32-bit states (16-byte records); a grid this large would need over
+  // 30 GB of state records anyway.
+  if (states >= static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max()))
+    throw std::length_error("octilinear grid too large");
+  states_ = static_cast<long>(states);
+  state_.reset(static_cast<StateRecord*>(std::calloc(states, sizeof(StateRecord))));
+  if (!state_) throw std::bad_alloc();
   target_cost_.assign(static_cast<std::size_t>(grid.w) * grid.h, kInf);
+  reached_src_.assign(target_cost_.size(), 0);
+  reached_dst_.assign(target_cost_.size(), 0);
 }
 
 std::vector<int> GridRouter::route(const Endpoint& src, const Endpoint& dst) {
   ++now_;
   set_corridor(src, dst);
   for (const auto& [node, c] : dst.nodes) target_cost_[node] = c;
+  expansions_ = 0;
+  if (!may_reach(src, dst)) {  // walled in: the search would only spend its cap of expansions
+    for (const auto& [node, c] : dst.nodes) target_cost_[node] = kInf;
+    return {};
+  }
   OpenList open;
   for (const auto& [node, c] : src.nodes) {
     long s = static_cast<long>(node) * 9 + kNoDir;
@@ -44,9 +58,70 @@ std::vector<int> GridRouter::route(const Endpoint& src, const Endpoint& dst) {
   return without_loops(trace_back(found));
 }
 
+// A node a path of this search may stand on, by what occupies it (over-approximated: a path
+// node that may be crossed only straight on is taken as passable in every direction).
+bool GridRouter::standable(int node) const {
+  const auto used = grid_.used[node];
+  if (used == kFree) return true;
+  if (used == kStation) return false;
+  if (negotiate_ || overlap_) return true;
+  return used == kPath && grid_.axis[node] >= 0 && crossing_price(grid_.owner[node]) < kInf;
+}
+
+// The diagonal step from `node` in direction d crosses a diagonal it may not cross.
+bool GridRouter::diagonal_blocked(int node, int d) const {
+  if (negotiate_ || overlap_) return false;
+  const int other = grid_.crossing_diagonal(node, d);
+  return other >= 0 && crossing_price(other) == kInf;
+}
+
+// Whether the search can reach the target at all: breadth-first from both ends at once over
+// the nodes a path may stand on, the smaller frontier first, until the two meet (maybe: the
+// search runs) or one side runs out of nodes (no: that end is walled in). The moves allowed
+// here are a superset of the search's (no turn, port or straight-on rule), so "no" is exact,
+// and costs at most twice the walled-in side's area, where the search would spend its whole
+// cap of expansions (up to 240,000 states) before it gave up.
+bool GridRouter::may_reach(const Endpoint& src, const Endpoint& dst) {
+  frontier_src_.clear();
+  frontier_dst_.clear();
+  for (const auto& [node, c] : src.nodes) {
+    if (target_cost_[node] < kInf) return true;
+    reached_src_[node] = now_;
+    frontier_src_.push_back(node);
+  }
+  for (const auto& [node, c] : dst.nodes) {
+    reached_dst_[node] = now_;
+    frontier_dst_.push_back(node);
+  }
+  std::size_t head_src = 0, head_dst = 0;
+  while (head_src < frontier_src_.size() && head_dst < frontier_dst_.size()) {
+    const bool forward = frontier_src_.size() - head_src <= frontier_dst_.size() - head_dst;
+    auto& frontier = forward ? frontier_src_ : frontier_dst_;
+    auto& mine = forward ? reached_src_ : reached_dst_;
+    const auto& theirs = forward ? reached_dst_ : reached_src_;
+    const int node = frontier[forward ? head_src++ : head_dst++];
+    const int x = node % grid_.w, y = node / grid_.w;
+    for (int d = 0; d < 8; ++d) {
+      const int nx = x + kDx[d], ny = y + kDy[d];
+      if (!grid_.inside(nx, ny)) continue;
+      const int next = grid_.at(nx, ny);
+      if (mine[next] == now_ || diagonal_blocked(node, d)) continue;
+      if (theirs[next] == now_) return true;
+      if (!standable(next)) continue;
+      mine[next] = now_;
+      frontier.push_back(next);
+    }
+  }
+  return false;
+}
+
 // Octile distance to the target's candidate area: admissible, as a step costs at least its length.
 double GridRouter::heuristic(int node, const Endpoint& dst) const {
-  double dx = std::abs(node % grid_.w - dst.centre.x), dy = std::abs(node / grid_.w - dst.centre.y);
+  return heuristic_at(node % grid_.w, node / grid_.w, dst);
+}
+
+double GridRouter::heuristic_at(int x, int y, const Endpoint& dst) const {
+  double dx = std::abs(x - dst.centre.x), dy = std::abs(y - dst.centre.y);
   double oct = std::max(dx, dy) + (std::sqrt(2.0) - 1) * std::min(dx, dy);
   return std::max(0.0, oct - dst.radius * std::sqrt(2.0));
 }
@@ -61,10 +136,9 @@ void GridRouter::set_corridor(const Endpoint& src, const Endpoint& dst) {
 
 // Records cost c for state s when it is new in this search or cheaper.
 bool GridRouter::relax(long s, double c, long parent) {
-  if (stamp_[s] != now_ || c < cost_[s]) {
-    stamp_[s] = now_;
-    cost_[s] = c;
-    parent_[s] = parent;
+  auto& r = state_[static_cast<std::size_t>(s)];
+  if (r.stamp != now_ || c < r.cost) {
+    r = {c, static_cast<std::int32_t>(parent), now_};
     return true;
   }
   return false;
@@ -74,7 +148,7 @@ bool GridRouter::relax(long s, double c, long parent) {
 // state goal_base + (node * 9 + arrival direction), with its total cost, when a step reaches a
 // target node; the first goal popped is the cheapest.
 long GridRouter::search(OpenList& open, const Endpoint& src, const Endpoint& dst) {
-  const long goal_base = static_cast<long>(cost_.size());
+  const long goal_base = states_;
   double best_goal = kInf;
   std::size_t expansions = 0;
   // Long routes may explore more; hopeless ones still stop.
@@ -82,13 +156,15 @@ long GridRouter::search(OpenList& open, const Endpoint& src, const Endpoint& dst
   std::size_t cap = std::min<std::size_t>(p_.max_expansions * 8,
                                           std::max<std::size_t>(p_.max_expansions, 60 * reach * reach));
   while (!open.empty()) {
+    expansions_ = expansions;
     if (++expansions > cap) break;
     auto [f, s] = open.top();
     open.pop();
     if (s >= goal_base) return s - goal_base;
     if (f > best_goal) break;
     const int node = static_cast<int>(s / 9);
-    if (stamp_[s] != now_ || f - heuristic(node, dst) > cost_[s] + 1e-9) continue;  // stale
+    const auto& r = state_[static_cast<std::size_t>(s)];
+    if (r.stamp != now_ || f - heuristic(node, dst) > r.cost + 1e-9) continue;  // stale
     expand(open, s, src, dst, best_goal);
   }
   return -1;
@@ -96,7 +172,7 @@ long GridRouter::search(OpenList& open, const Endpoint& src, const Endpoint& dst
 
 void GridRouter::expand(OpenList& open, long s, const Endpoint& src, const Endpoint& dst, double& best_goal) {
   const int node = static_cast<int>(s / 9), din = static_cast<int>(s % 9);
-  const double c = cost_[s];
+  const double c = state_[static_cast<std::size_t>(s)].cost;
   const int x = node % grid_.w, y = node / grid_.w;
   const bool straight_only = straight_on_only(node, din);
   for (int d = 0; d < 8; ++d) {
@@ -107,7 +183,8 @@ void GridRouter::expand(OpenList& open, long s, const Endpoint& src, const Endpo
     int nx = x + kDx[d], ny = y + kDy[d];
     if (!grid_.inside(nx, ny)) continue;
     int next = grid_.at(nx, ny);
-    const auto diagonal = diagonal_price(node, d);
+    // Straight steps never cross a diagonal, and most nodes are free: no call for those.
+    const auto diagonal = (d & 1) ? diagonal_price(node, d) : std::optional<double>(0.0);
     if (!diagonal) continue;
     step += *diagonal;
     step += (d % 2) ? std::sqrt(2.0) : 1.0;
@@ -118,17 +195,17 @@ void GridRouter::expand(OpenList& open, long s, const Endpoint& src, const Endpo
         double total = step + tc + dst.port_cost[port];
         long gs = static_cast<long>(next) * 9 + d;
         best_goal = std::min(best_goal, total);
-        open.push({total, static_cast<long>(cost_.size()) + gs});
+        open.push({total, states_ + gs});
         goal_parents_.push_back({gs, s, total});
       }
     }
-    const auto occupancy = occupancy_price(next, d);
+    const auto occupancy = grid_.used[next] == kFree ? std::optional<double>(0.0) : occupancy_price(next, d);
     if (!occupancy) continue;
     step += *occupancy;
     step += reserved_price(next, src, dst);
     step += corridor_price(nx, ny);
     long ns = static_cast<long>(next) * 9 + d;
-    if (relax(ns, step, s)) open.push({step + heuristic(next, dst), ns});
+    if (relax(ns, step, s)) open.push({step + heuristic_at(nx, ny, dst), ns});
   }
 }
 
@@ -208,7 +285,7 @@ std::vector<int> GridRouter::trace_back(long found) {
     }
   goal_parents_.clear();
   std::vector<int> path{static_cast<int>(found / 9)};
-  for (long s = parent; s >= 0; s = parent_[s]) path.push_back(static_cast<int>(s / 9));
+  for (long s = parent; s >= 0; s = state_[static_cast<std::size_t>(s)].parent) path.push_back(static_cast<int>(s / 9));
   std::reverse(path.begin(), path.end());
   return path;
 }

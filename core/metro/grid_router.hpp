@@ -11,8 +11,11 @@
 
 #include <array>
 #include <cstdint>
+#include <cstdlib>
+#include <memory>
 #include <optional>
-#include <queue>
+
+#include <boost/heap/d_ary_heap.hpp>
 #include <utility>
 #include <vector>
 
@@ -58,9 +61,14 @@ class GridRouter {
   void set_negotiation(bool on) { negotiate_ = on; }
   void set_history(const std::vector<float>* history) { history_ = history; }
 
+  // States the last search expanded (0 when its end was found walled in without one).
+  std::size_t expansions() const { return expansions_; }
+
  private:
   using Item = std::pair<double, long>;  // f, state (>= goal_base: goal)
-  using OpenList = std::priority_queue<Item, std::vector<Item>, std::greater<>>;
+  // A 4-ary heap pops the same (f, state) order as a binary one, with fewer cache misses on
+  // the large open lists of long routes (the search's main cost).
+  using OpenList = boost::heap::d_ary_heap<Item, boost::heap::arity<4>, boost::heap::compare<std::greater<Item>>>;
   struct Arrival {
     long goal, parent;
     double total;
@@ -68,6 +76,10 @@ class GridRouter {
 
   static double distance_to_segment(double x, double y, XY a, XY b);
   double heuristic(int node, const Endpoint& dst) const;
+  double heuristic_at(int x, int y, const Endpoint& dst) const;
+  bool standable(int node) const;
+  bool diagonal_blocked(int node, int d) const;
+  bool may_reach(const Endpoint& src, const Endpoint& dst);
   void set_corridor(const Endpoint& src, const Endpoint& dst);
   bool relax(long s, double c, long parent);
   long search(OpenList& open, const Endpoint& src, const Endpoint& dst);
@@ -91,12 +103,25 @@ class GridRouter {
   bool overlap_ = false;
   bool negotiate_ = false;
   const std::vector<float>* history_ = nullptr;
-  // Search state, by state (node * 9 + incoming direction); stamp_ != now_ means unset.
-  std::vector<double> cost_;
-  std::vector<long> parent_;
-  std::vector<std::uint32_t> stamp_;
+  // Search state, by state (node * 9 + incoming direction); stamp != now_ means unset. One
+  // record per state (one cache miss where three arrays took three), in zeroed memory from
+  // calloc: a search touches a small part of the grid, and untouched pages are never mapped.
+  struct StateRecord {
+    double cost;
+    std::int32_t parent;  // state, or -1
+    std::uint32_t stamp;
+  };
+  struct FreeRecords {
+    void operator()(StateRecord* p) const { std::free(p); }
+  };
+  std::unique_ptr<StateRecord[], FreeRecords> state_;
+  long states_ = 0;
+  std::size_t expansions_ = 0;
   std::uint32_t now_ = 0;
   std::vector<double> target_cost_;  // by grid node: the cost of ending there, or infinity
+  // may_reach's visits, by grid node: reached from the source / the target side in search now_.
+  std::vector<std::uint32_t> reached_src_, reached_dst_;
+  std::vector<int> frontier_src_, frontier_dst_;
   std::vector<Arrival> goal_parents_;
 };
 

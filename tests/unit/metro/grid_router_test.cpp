@@ -114,6 +114,51 @@ TEST(GridRouter, OccupiedNodesAreAvoided) {
   EXPECT_TRUE(router.route(fixed(grid, 3, 10, 0), fixed(grid, 15, 10, 1)).empty());
 }
 
+TEST(GridRouter, WalledInEndFailsWithoutASearch) {
+  // A 201 x 201 grid; the target inside a ring of stations: no state is expanded (the search
+  // would otherwise spend its cap on the rest of the grid).
+  auto grid = grid_around({{0, 0}, {200, 200}}, 1.0, 0);
+  for (int x = 148; x <= 152; ++x)
+    for (int y = 148; y <= 152; ++y)
+      if (x == 148 || x == 152 || y == 148 || y == 152) grid.used[grid.at(x, y)] = kStation;
+  GridRouteParams p;
+  GridRouter router(grid, p);
+  EXPECT_TRUE(router.route(fixed(grid, 20, 20, 0), fixed(grid, 150, 150, 1)).empty());
+  EXPECT_EQ(router.expansions(), 0u);
+  // The source walled in instead.
+  EXPECT_TRUE(router.route(fixed(grid, 150, 150, 1), fixed(grid, 20, 20, 0)).empty());
+  EXPECT_EQ(router.expansions(), 0u);
+  // A gap in the ring: routed.
+  grid.used[grid.at(152, 150)] = kFree;
+  EXPECT_FALSE(router.route(fixed(grid, 20, 20, 0), fixed(grid, 150, 150, 1)).empty());
+  EXPECT_GT(router.expansions(), 0u);
+}
+
+TEST(GridRouter, RingOfCrossablePathIsNotAWall) {
+  // The target inside a ring of chain 0's path, straight on every side (corners bend): it
+  // can be reached across it only where chain 0 may be crossed.
+  auto grid = grid21();
+  for (int x = 12; x <= 18; ++x)
+    for (int y = 12; y <= 18; ++y) {
+      const bool side_x = x == 12 || x == 18, side_y = y == 12 || y == 18;
+      if (!side_x && !side_y) continue;
+      const int n = grid.at(x, y);
+      grid.used[n] = kPath;
+      grid.owner[n] = 0;
+      grid.axis[n] = side_x && side_y ? -1 : side_x ? 2 : 0;
+    }
+  GridRouteParams p;
+  GridRouter router(grid, p);
+  std::vector<char> crossable = {0, 0};
+  router.allow_crossing(&crossable, false);
+  EXPECT_TRUE(router.route(fixed(grid, 3, 3, 1), fixed(grid, 15, 15, 2)).empty());
+  EXPECT_EQ(router.expansions(), 0u);
+  crossable[0] = 1;
+  auto path = router.route(fixed(grid, 3, 3, 1), fixed(grid, 15, 15, 2));
+  ASSERT_FALSE(path.empty());
+  EXPECT_EQ(path.back(), grid.at(15, 15));
+}
+
 TEST(GridRouter, TakenDiagonalIsNotCrossed) {
   auto grid = grid21();
   // A path of chain 0 on the NW diagonals of a column of cells (x 9..10), every row: the
