@@ -13,7 +13,7 @@
 namespace tourmap::api {
 namespace {
 
-constexpr int kLayoutVersion = 7;  // 6: bend reduction, quality.compare (the metric tool's figures); 7: clearance in the bend reduction
+constexpr int kLayoutVersion = 8;  // 6: bend reduction, quality.compare (the metric tool's figures); 7: clearance in the bend reduction; 8: detour limit in the router, spacing with cuts
 using util::Clock;
 using util::ms_since;
 
@@ -85,7 +85,7 @@ nlohmann::json bend_reduction_json(const metro::BendReductionReport& b) {
 nlohmann::json spacing_json(const metro::SpacingReport& s) {
   return {{"status", s.status},     {"gap_before", s.gap_before}, {"gap_after", s.gap_after},
           {"rounds", s.rounds},     {"accepted", s.accepted},     {"columns", s.columns},
-          {"rows", s.rows},         {"time_ms", s.time_ms}};
+          {"rows", s.rows},         {"cuts", s.cuts},             {"time_ms", s.time_ms}};
 }
 
 nlohmann::json points_json(const std::vector<geo::XY>& points) {

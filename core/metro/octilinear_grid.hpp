@@ -57,6 +57,8 @@ struct GridRouteParams {
   double overlap_cost = 40.0;                    // last resort: per grid node shared with another path
   std::size_t max_expansions = 30000;            // per path search, more for long ones (up to 8x):
                                                  // give up on walled-in routes fast
+  double max_detour = 2.5;                       // a search gives up on paths costing more than this
+  double detour_slack = 30.0;                    // times (the straight way + 10 cells), plus this
   double time_limit_ms = 8000.0;
   int attempts = 3;                              // on failure: retry on a finer grid
 };

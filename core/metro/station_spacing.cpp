@@ -18,6 +18,7 @@
 #include <cstdint>
 #include <limits>
 #include <optional>
+#include <unordered_set>
 #include <utility>
 #include <vector>
 
@@ -141,8 +142,8 @@ Measure measure(const LayoutGraph& g, const Layout& L) {
 struct Program {
   MipModel model;
   int scale = -1, shift = -1;  // columns: the similarity's scale, its x shift (y: the next)
+  int mean = -1;               // column: the mean edge M
   std::vector<int> column;     // per point: its first move column (x+, x-, y+, y-)
-  std::size_t gap_pairs = 0, segment_pairs = 0;
 };
 
 // A linear expression over the columns, and a constant.
@@ -175,24 +176,25 @@ void add_row(Program& prog, Expr e, double lo, double hi) {
 
 using Box = CGAL::Box_intersection_d::Box_with_handle_d<double, 2, std::size_t, CGAL::Box_intersection_d::ID_EXPLICIT>;
 
-// A box around a segment, grown by `pad` on every side.
-Box segment_box(const Drawing& d, std::size_t i, double pad) {
-  const XY a = d.pt[d.seg[i].p], b = d.pt[d.seg[i].q];
+// A box around the segment from a to b, grown by `pad` on every side.
+Box segment_box(XY a, XY b, std::size_t id, double pad) {
   double lo[2] = {std::min(a.x, b.x) - pad, std::min(a.y, b.y) - pad};
   double hi[2] = {std::max(a.x, b.x) + pad, std::max(a.y, b.y) + pad};
-  return Box(lo, hi, i);
+  return Box(lo, hi, id);
 }
 
-// Candidate pairs by box overlap (CGAL's box intersection: near linear, where all pairs would
-// be quadratic: an import may hold 20,000 edges). Sorted, so the program's rows keep one order.
+// Candidate pairs by box overlap, in the drawing `d` with its points at `pt` (CGAL's box
+// intersection: near linear, where all pairs would be quadratic: an import may hold 20,000
+// edges). Sorted, so the program's rows keep one order.
 // Stations with segments whose box comes within `radius`:
-std::vector<std::pair<std::uint32_t, std::size_t>> station_segment_candidates(const Drawing& d, double radius) {
+std::vector<std::pair<std::uint32_t, std::size_t>> station_segment_candidates(const Drawing& d, const std::vector<XY>& pt,
+                                                                              double radius) {
   std::vector<Box> stations, segments;
   for (std::uint32_t v = 0; v < d.stations; ++v) {
-    double lo[2] = {d.pt[v].x - radius, d.pt[v].y - radius}, hi[2] = {d.pt[v].x + radius, d.pt[v].y + radius};
+    double lo[2] = {pt[v].x - radius, pt[v].y - radius}, hi[2] = {pt[v].x + radius, pt[v].y + radius};
     stations.emplace_back(lo, hi, v);
   }
-  for (std::size_t i = 0; i < d.seg.size(); ++i) segments.push_back(segment_box(d, i, 0));
+  for (std::size_t i = 0; i < d.seg.size(); ++i) segments.push_back(segment_box(pt[d.seg[i].p], pt[d.seg[i].q], i, 0));
   std::vector<std::pair<std::uint32_t, std::size_t>> out;
   CGAL::box_intersection_d(stations.begin(), stations.end(), segments.begin(), segments.end(),
                            [&](const Box& v, const Box& s) { out.push_back({static_cast<std::uint32_t>(v.handle()), s.handle()}); });
@@ -201,9 +203,10 @@ std::vector<std::pair<std::uint32_t, std::size_t>> station_segment_candidates(co
 }
 
 // Segment pairs whose boxes come within `radius` of each other (i < j):
-std::vector<std::pair<std::size_t, std::size_t>> segment_pair_candidates(const Drawing& d, double radius) {
+std::vector<std::pair<std::size_t, std::size_t>> segment_pair_candidates(const Drawing& d, const std::vector<XY>& pt,
+                                                                         double radius) {
   std::vector<Box> segments;
-  for (std::size_t i = 0; i < d.seg.size(); ++i) segments.push_back(segment_box(d, i, radius / 2));
+  for (std::size_t i = 0; i < d.seg.size(); ++i) segments.push_back(segment_box(pt[d.seg[i].p], pt[d.seg[i].q], i, radius / 2));
   std::vector<std::pair<std::size_t, std::size_t>> out;
   CGAL::box_self_intersection_d(segments.begin(), segments.end(),
                                 [&](const Box& a, const Box& b) { out.push_back(std::minmax(a.handle(), b.handle())); });
@@ -211,10 +214,12 @@ std::vector<std::pair<std::size_t, std::size_t>> segment_pair_candidates(const D
   return out;
 }
 
+// The columns, the segments' directions and floors, the edges' targets and the mean; the
+// pairs' rows come separately (gap_row, apart_row).
 Program build_program(const LayoutGraph& g, const Drawing& d, double mean, const SpacingParams& p) {
   Program prog;
   auto& m = prog.model;
-  const double trust = p.trust * mean, tau = p.gap_share * p.margin;
+  const double trust = p.trust * mean;
   prog.scale = m.add_column(0.8, 1.25, 0, false, 1);
   prog.shift = m.add_column(-kFree, kFree, 0, false, 0);
   m.add_column(-kFree, kFree, 0, false, 0);
@@ -224,7 +229,7 @@ Program build_program(const LayoutGraph& g, const Drawing& d, double mean, const
     prog.column[i] = m.add_column(0, trust, w, false, 0);
     for (int k = 1; k < 4; ++k) m.add_column(0, trust, w, false, 0);
   }
-  const int mean_col = m.add_column(0, kFree, 0, false, mean);
+  prog.mean = m.add_column(0, kFree, 0, false, mean);
 
   // Segments keep their direction and a floor on their length; edges their target; the mean.
   std::vector<Expr> edge_length(g.edges.size());
@@ -250,52 +255,157 @@ Program build_program(const LayoutGraph& g, const Drawing& d, double mean, const
   }
   for (auto& [c, v] : total.terms) v = -v;  // edges * M - sum of lengths = 0
   total.constant = -total.constant;
-  total.terms.push_back({mean_col, static_cast<double>(g.edges.size())});
+  total.terms.push_back({prog.mean, static_cast<double>(g.edges.size())});
   add_row(prog, std::move(total), 0, 0);
-
-  // Stations clear of the segments of edges they are not on (soft). A segment's end nearer to
-  // v along w stays the nearer one (its direction is fixed), so one row per pair.
-  const double gap_radius = p.pair_radius * tau * mean + 2 * trust;
-  util::check_stop();
-  for (const auto& [v, si] : station_segment_candidates(d, gap_radius)) {
-    const auto& s = d.seg[si];
-    const auto [a, b] = g.edges[s.edge];
-    if (a == v || b == v) continue;
-    if (point_segment_distance(d.pt[v], d.pt[s.p], d.pt[s.q]) >= gap_radius) continue;
-    const int w = best_separation({d.pt[v]}, {d.pt[s.p], d.pt[s.q]}).first;
-    const auto nearer = dot(kDir[w], d.pt[s.p]) >= dot(kDir[w], d.pt[s.q]) ? s.p : s.q;
-    // The slack may not let the pair come closer than it is now.
-    const double now = dot(kDir[w], minus(d.pt[v], d.pt[nearer]));
-    const int slack = m.add_column(0, std::max(0.0, tau * mean - now), p.w_slack, false, 0);
-    Expr row;
-    row.terms = {{mean_col, -tau}, {slack, 1}};
-    add_difference(row, prog, d, kDir[w], v, nearer);
-    add_row(prog, std::move(row), 0, kFree);
-    ++prog.gap_pairs;
-  }
-
-  // Segments of other edges (or apart on one edge) kept apart by what separates them now.
-  const double segment_radius = p.segment_share * mean + 2 * trust;
-  util::check_stop();
-  for (const auto& [i, j] : segment_pair_candidates(d, segment_radius)) {
-    const auto &s = d.seg[i], &t = d.seg[j];
-    if (s.p == t.p || s.p == t.q || s.q == t.p || s.q == t.q) continue;  // meet at a point: directions keep them apart
-    const XY a0 = d.pt[s.p], a1 = d.pt[s.q], b0 = d.pt[t.p], b1 = d.pt[t.q];
-    if (segment_contact(a0, a1, b0, b1, 1e-9).kind != SegmentContact::none) continue;  // crossing now: it stays
-    const double apart = std::min({point_segment_distance(a0, b0, b1), point_segment_distance(a1, b0, b1),
-                                   point_segment_distance(b0, a0, a1), point_segment_distance(b1, a0, a1)});
-    if (apart >= segment_radius) continue;
-    const auto [w, now] = best_separation({a0, a1}, {b0, b1});
-    const double need = std::clamp(std::min(now, p.segment_share * mean), 0.0, kFree);
-    // The ends that are nearest along w stay the nearest (directions are fixed): one row.
-    const auto a = dot(kDir[w], a0) <= dot(kDir[w], a1) ? s.p : s.q;
-    const auto b = dot(kDir[w], b0) >= dot(kDir[w], b1) ? t.p : t.q;
-    Expr row;
-    add_difference(row, prog, d, kDir[w], a, b);
-    add_row(prog, std::move(row), need, kFree);
-    ++prog.segment_pairs;
-  }
   return prog;
+}
+
+// A pair's row: lo <= terms, plus a slack column (priced) when `slack_hi` > 0.
+struct PairRow {
+  std::vector<std::pair<int, double>> terms;
+  double lo = 0, slack_hi = 0;
+};
+
+// Station v clear of segment si of an edge it is not on (soft): w.(v - e) >= tau M, w the
+// octilinear direction that separates them best now, e the segment's end nearer to v along w
+// (it stays the nearer: the segment's direction is fixed), so one row per pair. The slack may
+// not let the pair come closer than it is now; a pair clear of the rule now gets none.
+std::optional<PairRow> gap_row(const LayoutGraph& g, const Program& prog, const Drawing& d, std::uint32_t v,
+                               std::size_t si, double mean, double tau) {
+  const auto& s = d.seg[si];
+  const auto [a, b] = g.edges[s.edge];
+  if (a == v || b == v) return std::nullopt;
+  const int w = best_separation({d.pt[v]}, {d.pt[s.p], d.pt[s.q]}).first;
+  const auto nearer = dot(kDir[w], d.pt[s.p]) >= dot(kDir[w], d.pt[s.q]) ? s.p : s.q;
+  const double now = dot(kDir[w], minus(d.pt[v], d.pt[nearer]));
+  Expr e;
+  e.terms = {{prog.mean, -tau}};
+  add_difference(e, prog, d, kDir[w], v, nearer);
+  return PairRow{std::move(e.terms), -e.constant, std::max(0.0, tau * mean - now)};
+}
+
+// Segments i and j of other edges (or apart on one edge) kept apart by what separates them
+// now: w.(a - b) >= min(now, delta M0), a and b their ends nearest along w (they stay the
+// nearest: directions are fixed). None for segments that meet at a point (their directions
+// keep them apart) or cross now (a geographic crossing: it stays).
+std::optional<PairRow> apart_row(const Program& prog, const Drawing& d, std::size_t i, std::size_t j, double mean,
+                                 const SpacingParams& p) {
+  const auto &s = d.seg[i], &t = d.seg[j];
+  if (s.p == t.p || s.p == t.q || s.q == t.p || s.q == t.q) return std::nullopt;
+  const XY a0 = d.pt[s.p], a1 = d.pt[s.q], b0 = d.pt[t.p], b1 = d.pt[t.q];
+  if (segment_contact(a0, a1, b0, b1, 1e-9).kind != SegmentContact::none) return std::nullopt;
+  const auto [w, now] = best_separation({a0, a1}, {b0, b1});
+  const double need = std::clamp(std::min(now, p.segment_share * mean), 0.0, kFree);
+  const auto a = dot(kDir[w], a0) <= dot(kDir[w], a1) ? s.p : s.q;
+  const auto b = dot(kDir[w], b0) >= dot(kDir[w], b1) ? t.p : t.q;
+  Expr e;
+  add_difference(e, prog, d, kDir[w], a, b);
+  return PairRow{std::move(e.terms), need - e.constant, 0};
+}
+
+double segment_distance(XY a0, XY a1, XY b0, XY b1) {
+  if (segment_contact(a0, a1, b0, b1, 1e-9).kind != SegmentContact::none) return 0;
+  return std::min({point_segment_distance(a0, b0, b1), point_segment_distance(a1, b0, b1),
+                   point_segment_distance(b0, a0, a1), point_segment_distance(b1, a0, a1)});
+}
+
+// The pairs a round's program holds, added as they are needed: those near each other at the
+// start (within the rule plus the cut radius), then the ones a solution brought too close
+// (a cut: the solution violates the pair's row), until a solution needs none.
+class PairRows {
+ public:
+  PairRows(const LayoutGraph& g, const Drawing& d, const Program& prog, double mean, const SpacingParams& p)
+      : g_(g), d_(d), prog_(prog), mean_(mean), p_(p), tau_(p.gap_share * p.margin) {}
+
+  // Rows for the pairs near each other now, into the model.
+  void add_initial(MipModel& m) {
+    const double radius = p_.pair_radius * tau_ * mean_ + 2 * p_.cut_radius * mean_;
+    for (const auto& [v, si] : station_segment_candidates(d_, d_.pt, radius))
+      if (point_segment_distance(d_.pt[v], d_.pt[d_.seg[si].p], d_.pt[d_.seg[si].q]) < radius) add_gap(m, v, si);
+    const double apart = p_.segment_share * mean_ + 2 * p_.cut_radius * mean_;
+    for (const auto& [i, j] : segment_pair_candidates(d_, d_.pt, apart)) {
+      const auto &s = d_.seg[i], &t = d_.seg[j];
+      if (segment_distance(d_.pt[s.p], d_.pt[s.q], d_.pt[t.p], d_.pt[t.q]) < apart) add_apart(m, i, j);
+    }
+  }
+
+  // Rows for the pairs not held yet that the points `pt` (the last solution, mean edge M)
+  // bring closer than their rule; how many.
+  template <typename Sink>
+  std::size_t add_cuts(Sink& sink, const std::vector<XY>& pt, double M) {
+    std::size_t added = 0;
+    const double gap = tau_ * M * (1 - 1e-6);
+    for (const auto& [v, si] : station_segment_candidates(d_, pt, gap)) {
+      if (gap_pairs_.count(key(v, si))) continue;
+      if (point_segment_distance(pt[v], pt[d_.seg[si].p], pt[d_.seg[si].q]) >= gap) continue;
+      added += add_gap(sink, v, si);
+    }
+    const double apart = p_.segment_share * mean_;
+    for (const auto& [i, j] : segment_pair_candidates(d_, pt, apart)) {
+      if (apart_pairs_.count(key(i, j))) continue;
+      const auto &s = d_.seg[i], &t = d_.seg[j];
+      const double before = segment_distance(d_.pt[s.p], d_.pt[s.q], d_.pt[t.p], d_.pt[t.q]);
+      if (before == 0) continue;  // crossing at the start: it stays
+      const double after = segment_distance(pt[s.p], pt[s.q], pt[t.p], pt[t.q]);
+      if (after >= std::min(before, apart) * (1 - 1e-6)) continue;
+      added += add_apart(sink, i, j);
+    }
+    return added;
+  }
+
+  std::size_t gap_pairs() const { return gap_pairs_.size(); }
+  std::size_t apart_pairs() const { return apart_pairs_.size(); }
+
+ private:
+  static std::uint64_t key(std::size_t a, std::size_t b) { return (static_cast<std::uint64_t>(a) << 32) | b; }
+
+  // A sink is the model (before the first solve) or the session (cuts).
+  template <typename Sink>
+  bool add_gap(Sink& sink, std::uint32_t v, std::size_t si) {
+    auto row = gap_row(g_, prog_, d_, v, si, mean_, tau_);
+    if (!row) return false;
+    gap_pairs_.insert(key(v, si));
+    if (row->slack_hi > 0) row->terms.push_back({new_column(sink, row->slack_hi), 1.0});
+    add(sink, row->terms, row->lo);
+    return true;
+  }
+  template <typename Sink>
+  bool add_apart(Sink& sink, std::size_t i, std::size_t j) {
+    auto row = apart_row(prog_, d_, i, j, mean_, p_);
+    if (!row) return false;
+    apart_pairs_.insert(key(i, j));
+    add(sink, row->terms, row->lo);
+    return true;
+  }
+  // The slack starts at its upper bound: the start (no move) is then feasible.
+  int new_column(MipModel& m, double hi) { return m.add_column(0, hi, p_.w_slack, false, hi); }
+  int new_column(LpSession& lp, double hi) { return lp.add_column(0, hi, p_.w_slack); }
+  static void add(MipModel& m, std::vector<std::pair<int, double>> terms, double lo) {
+    m.add_row(std::move(terms), lo, kFree);
+  }
+  static void add(LpSession& lp, const std::vector<std::pair<int, double>>& terms, double lo) {
+    lp.add_row(terms, lo, kFree);
+  }
+
+  const LayoutGraph& g_;
+  const Drawing& d_;
+  const Program& prog_;
+  double mean_;
+  const SpacingParams& p_;
+  double tau_;
+  std::unordered_set<std::uint64_t> gap_pairs_, apart_pairs_;
+};
+
+// The points of a solution: the similarity applied, then each point's move.
+std::vector<XY> points_of(const Program& prog, const Drawing& d, const std::vector<double>& x) {
+  std::vector<XY> pt(d.pt.size());
+  const double scale = x[static_cast<std::size_t>(prog.scale)];
+  const auto shift = static_cast<std::size_t>(prog.shift);
+  for (std::uint32_t i = 0; i < pt.size(); ++i) {
+    const auto* move = &x[static_cast<std::size_t>(prog.column[i])];
+    pt[i] = {scale * d.pt[i].x + x[shift] + move[0] - move[1], scale * d.pt[i].y + x[shift + 1] + move[2] - move[3]};
+  }
+  return pt;
 }
 
 }  // namespace
@@ -330,24 +440,28 @@ SpacingReport space_stations(const LayoutGraph& g, Layout& layout, const Spacing
       break;
     }
     auto prog = build_program(g, *drawing, mean, p);
-    report.columns = prog.model.columns();
-    report.rows = prog.model.rows.size();
+    PairRows pairs(g, *drawing, prog, mean, p);
+    pairs.add_initial(prog.model);
     ++report.rounds;
     // The round in progress may finish past the budget (CLP counts the process's CPU time, which
-    // other threads advance too): a round is 5-150 ms on the shared networks.
-    auto solved = solve_lp_with_clp(prog.model, left_ms / 1000.0 + 0.5);
-    if (solved.x.size() != prog.model.columns()) {
+    // other threads advance too).
+    LpSession lp(prog.model);
+    auto solved = lp.solve(left_ms / 1000.0 + 0.5);
+    std::vector<XY> pt;
+    for (int cut = 0; solved.status == "optimal"; ++cut) {
+      pt = points_of(prog, *drawing, solved.x);
+      if (cut == p.max_cuts) break;  // the acceptance test below still guards the result
+      const auto added = pairs.add_cuts(lp, pt, solved.x[static_cast<std::size_t>(prog.mean)]);
+      if (added == 0) break;
+      report.cuts += added;
+      util::check_stop();
+      solved = lp.resolve(left_ms / 1000.0 + 0.5);
+    }
+    report.columns = lp.columns();
+    report.rows = lp.rows();
+    if (solved.status != "optimal") {
       report.status = "solver";
       break;
-    }
-    std::vector<XY> pt(drawing->pt.size());
-    for (std::uint32_t i = 0; i < pt.size(); ++i) {
-      const auto& x = solved.x;
-      const auto* move = &x[static_cast<std::size_t>(prog.column[i])];
-      const double scale = x[static_cast<std::size_t>(prog.scale)];
-      const auto shift = static_cast<std::size_t>(prog.shift);
-      pt[i] = {scale * drawing->pt[i].x + x[shift] + move[0] - move[1],
-               scale * drawing->pt[i].y + x[shift + 1] + move[2] - move[3]};
     }
     auto candidate = layout_of(*drawing, pt, layout);
     auto next = measure(g, candidate);

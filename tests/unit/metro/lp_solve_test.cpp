@@ -42,5 +42,35 @@ TEST(LpSolve, InfeasibleHasNoSolution) {
   EXPECT_TRUE(r.x.empty());
 }
 
+// A session solved, then cut (a row the solution violates, with a new column in it) and
+// solved again from its basis: the same optimum as the whole program solved at once.
+TEST(LpSolve, SessionResolvesWithCuts) {
+  MipModel m;
+  const int x = m.add_column(0, 1e30, 1, false, 0), y = m.add_column(0, 1e30, 1, false, 0);
+  m.add_row({{x, 1}, {y, 2}}, 4, 1e30);
+  LpSession lp(m);
+  auto first = lp.solve(5);
+  ASSERT_EQ(first.status, "optimal");
+  EXPECT_NEAR(first.objective, 2.0, 1e-7);  // (0, 2)
+  // Cut: 3x + y + z >= 6 with z >= 0 at cost 10 (a priced slack).
+  const int z = lp.add_column(0, 1e30, 10);
+  EXPECT_EQ(z, 2);
+  lp.add_row({{x, 3}, {y, 1}, {z, 1}}, 6, 1e30);
+  EXPECT_EQ(lp.columns(), 3u);
+  EXPECT_EQ(lp.rows(), 2u);
+  auto second = lp.resolve(5);
+  ASSERT_EQ(second.status, "optimal");
+  ASSERT_EQ(second.x.size(), 3u);
+  EXPECT_NEAR(second.x[0], 1.6, 1e-7);
+  EXPECT_NEAR(second.x[1], 1.2, 1e-7);
+  EXPECT_NEAR(second.x[2], 0.0, 1e-7);
+  EXPECT_NEAR(second.objective, 2.8, 1e-7);
+  // Terms on one column are summed: x + x >= 5 is 2x >= 5.
+  lp.add_row({{x, 1}, {x, 1}}, 5, 1e30);
+  auto third = lp.resolve(5);
+  ASSERT_EQ(third.status, "optimal");
+  EXPECT_NEAR(third.x[0], 2.5, 1e-7);
+}
+
 }  // namespace
 }  // namespace tourmap::metro

@@ -129,6 +129,40 @@ TEST(StationSpacing, ASqueezedLineStaysBetweenItsNeighbours) {
   }
 }
 
+// Three parallel lines at y = 0, 1 and 8 (edges 10 long). With the program holding only the
+// pairs within the rule at the start, the far line is not in it; moving the middle line away
+// from the first brings it too close to the far one, and that pair comes in as a cut.
+TEST(StationSpacing, PairsBroughtTooCloseAreCutIn) {
+  LayoutGraph g;
+  Layout L;
+  const double ys[] = {0, 1, 8};
+  for (std::uint32_t line = 0; line < 3; ++line) {
+    for (int k = 0; k < 3; ++k) {
+      g.pos.push_back({1000.0 * k, 100 * ys[line]});
+      L.pos.push_back({10.0 * k, ys[line]});
+    }
+    for (std::uint32_t k = 0; k < 2; ++k) {
+      const std::uint32_t a = 3 * line + k;
+      g.edges.push_back({a, a + 1});
+      g.edge_lines.push_back({line});
+      L.paths.push_back({L.pos[a], L.pos[a + 1]});
+    }
+  }
+  g.min_length.assign(g.edges.size(), 10.0);
+  SpacingParams p;
+  p.pair_radius = 1.0;
+  p.cut_radius = 0;
+  auto report = space_stations(g, L, p);
+  EXPECT_EQ(report.status, "met");
+  EXPECT_GT(report.cuts, 0u);
+  EXPECT_GE(ratio(g, L), 0.5);
+  EXPECT_EQ(count_path_crossings(L.paths, g.edges), 0u);
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_LT(L.pos[k].y, L.pos[3 + k].y) << k;
+    EXPECT_LT(L.pos[3 + k].y, L.pos[6 + k].y) << k;
+  }
+}
+
 // A request's deadline (or a client that left) stops the pass between its steps, whatever its
 // own budget: the layout is left as it was.
 TEST(StationSpacing, StopsAtTheRequestsDeadline) {
