@@ -13,7 +13,11 @@
 // process (one run, first computation); octi's: its whole process (median of 3).
 //
 //   build/bench/metro_bench [--data-dir DIR] [--city ID] [--mip] [--time-limit S]
-//                           [--write-layouts DIR]   (or TOURMAP_BENCH_LAYOUTS=DIR)
+//                           [--write-layouts DIR]   (or TOURMAP_BENCH_LAYOUTS=DIR) [--variants]
+// --variants: instead, networks the layout has not seen (bench/metro_variants.hpp: every
+// manifest network jittered, without its longest line, and with flaws), default request: do
+// the invariants hold (0 added crossings and order violations, octilinear, every edge kept,
+// min gap >= 0.5 mean edge, within the time budget)?
 // --write-layouts writes each layout as DIR/<network>-<request>.json (stations and edges in the
 // API's frame, the fields metro_compare.py reads), to check the figures:
 //   python3 ../shared/tools/metro_compare.py measure ../shared/data/metro/loom_wien.json DIR/vienna-default.json
@@ -23,6 +27,7 @@
 #include "load/poi_load.hpp"
 #include "metro/city_layout.hpp"
 #include "metro/layout_metrics.hpp"
+#include "metro_variants.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -130,6 +135,83 @@ std::string solver_text(const metro::SolverReport& s) {
   return out;
 }
 
+// A row of the "where the time goes" table.
+std::string stage_row(const std::string& network, const std::string& request, const metro::CityLayoutResult& r) {
+  const auto& t = r.timing;
+  std::string attempts;
+  for (const auto& a : r.route.attempts) {
+    char one[96];
+    std::snprintf(one, sizeof one, "%s%.0f ms%s", attempts.empty() ? "" : ", ", a.ms,
+                  a.unrouted ? " (unrouted)" : a.added ? " (added)" : "");
+    attempts += one;
+  }
+  char row[768];
+  std::snprintf(row, sizeof row, "| %s | %s | %.0f | %.1f | %.1f | %.1f (%d, %zu) | %s | %.1f (%d) | %.1f (%d, %s) | %.1f | %.1f | %.1f |\n",
+                network.c_str(), request.c_str(), t.total, t.visual_worth, t.prelayout, t.route, r.route.attempt,
+                r.route.ripups, attempts.c_str(), t.bends, r.bends.rounds, t.spacing, r.spacing.rounds,
+                r.spacing.status.c_str(), t.measure, t.layout - t.fast, t.warp);
+  return row;
+}
+
+void print_stages(const std::vector<std::string>& rows) {
+  std::printf("\n## Where the time goes (ms, wall)\n\n"
+              "route: octilinear grid routing (the attempt kept, rip-ups); attempts: each routing attempt's time, and "
+              "whether it left a chain unrouted or added a crossing or order violation; bends: bend reduction (rounds); "
+              "spacing: the spacing LP (rounds, status); measure: the quality report; after: MIP (if any) and the tool's "
+              "metrics; warp: the geographic frame.\n\n"
+              "| network | request | total | visual worth | prelayout | route | attempts | bends | spacing | measure | after "
+              "| warp |\n"
+              "|---|---|---:|---:|---:|---:|---|---:|---:|---:|---:|---:|\n");
+  for (const auto& row : rows) std::fputs(row.c_str(), stdout);
+}
+
+// One table over the variants of every manifest network (and Lisbon as it is: no octi figure).
+int run_variants(const nlohmann::json& manifest, const std::string& data_dir, const std::string& only_city,
+                 double time_limit_s, const std::string& layouts_dir) {
+  std::printf("# tourmap metro layouts on networks it has not seen\n\n"
+              "Default request (lengths=visual-worth, solver=fast). holds: 0 added crossings, 0 order violations, "
+              "100 %% octilinear, every input edge kept, min gap >= 0.5 mean edge, and the time within the default "
+              "request's budget (300 ms under 200 stations, 2 s above).\n\n"
+              "| network | variant | stations | edges | time ms | bends | displacement %% | min gap / mean edge | added "
+              "crossings | order violations | edges kept | octilinear %% | holds |\n"
+              "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|---|\n");
+  int failures = 0;
+  std::uint32_t seed = 1;
+  std::vector<std::string> stage_rows;
+  for (const auto& entry : manifest.at("cities")) {
+    const auto id = entry.at("id").get<std::string>();
+    if (!entry.contains("metro") || (!only_city.empty() && only_city != id)) continue;
+    auto city = load_city(entry, data_dir);
+    auto cases = bench::variants_of(city.net, seed++);
+    if (id == "lisbon") cases.insert(cases.begin(), {"as is", city.net});
+    for (const auto& [name, net] : cases) {
+      auto in = metro::make_city_metro_input(net, city.pois, geo::projection_for(model::bbox_of(net)));
+      std::vector<bool> is_station;
+      for (const auto& n : net.nodes) is_station.push_back(n.is_station());
+      metro::CityLayoutParams params;
+      params.solver = metro::LayoutSolver::fast;
+      params.time_limit_s = time_limit_s;
+      auto r = metro::layout_city(in, city.pois, params);
+      auto m = metro::metro_compare_metrics(in.graph, is_station, in_frame(r));
+      const auto& q = r.quality;
+      const double budget_ms = in.station_count < 200 ? 300 : 2000;
+      const bool holds = q.added_crossings == 0 && q.order_violations == 0 && m.octilinear_share == 1.0 &&
+                         m.edges_kept == m.edges && q.min_station_gap_ratio >= 0.5 && r.timing.total <= budget_ms;
+      failures += !holds;
+      stage_rows.push_back(stage_row(id, name, r));
+      if (!layouts_dir.empty()) write_layout(layouts_dir + "/" + id + "-" + name + ".json", net, in_frame(r));
+      std::printf("| %s | %s | %zu | %zu | %.0f | %zu | %.2f | %.3f | %zu | %zu | %zu/%zu | %.1f | %s |\n", id.c_str(),
+                  name.c_str(), in.station_count, net.edges.size(), r.timing.total, m.bends, 100 * m.displacement,
+                  q.min_station_gap_ratio, q.added_crossings, q.order_violations, m.edges_kept, m.edges,
+                  100 * m.octilinear_share, holds ? "yes" : "**no**");
+      std::fflush(stdout);
+    }
+  }
+  print_stages(stage_rows);
+  std::printf("\n%d variant(s) where an invariant or the time budget does not hold\n", failures);
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -137,24 +219,27 @@ int main(int argc, char** argv) {
   if (const char* env = std::getenv("TOURMAP_DATA_DIR")) data_dir = env;
   std::string only_city, layouts_dir;
   if (const char* env = std::getenv("TOURMAP_BENCH_LAYOUTS")) layouts_dir = env;
-  bool with_mip = false;
+  bool with_mip = false, variants = false;
   double time_limit_s = 10.0;
   for (int i = 1; i < argc; ++i) {
     std::string arg = argv[i];
     bool has_value = i + 1 < argc;
     if (arg == "--mip") with_mip = true;
+    else if (arg == "--variants") variants = true;
     else if (arg == "--data-dir" && has_value) data_dir = argv[++i];
     else if (arg == "--city" && has_value) only_city = argv[++i];
     else if (arg == "--time-limit" && has_value) time_limit_s = std::stod(argv[++i]);
     else if (arg == "--write-layouts" && has_value) layouts_dir = argv[++i];
     else {
-      std::fprintf(stderr, "usage: metro_bench [--data-dir DIR] [--city ID] [--mip] [--time-limit S] [--write-layouts DIR]\n");
+      std::fprintf(stderr, "usage: metro_bench [--data-dir DIR] [--city ID] [--mip] [--time-limit S] [--write-layouts DIR] [--variants]\n");
       return 2;
     }
   }
   if (!layouts_dir.empty()) std::filesystem::create_directories(layouts_dir);
   std::vector<std::string> stage_rows;  // the second table: where each request's time went
   auto manifest = nlohmann::json::parse(load::read_file(TOURMAP_MANIFEST));
+  if (!layouts_dir.empty()) std::filesystem::create_directories(layouts_dir);
+  if (variants) return run_variants(manifest, data_dir, only_city, time_limit_s, layouts_dir);
 
   struct Request {
     const char* name;
@@ -208,24 +293,11 @@ int main(int argc, char** argv) {
                   q.min_station_gap_ratio, q.added_crossings, q.order_violations, m.edges_kept, m.edges,
                   100 * m.octilinear_share, solver_text(r.solver).c_str());
       std::fflush(stdout);
-      const auto& t = r.timing;
-      char row[512];
-      std::snprintf(row, sizeof row,
-                    "| %s | %s | %.0f | %.1f | %.1f | %.1f (%d, %zu) | %.1f (%d) | %.1f (%d, %s) | %.1f | %.1f | %.1f |\n",
-                    ref.network, req.name, t.total, t.visual_worth, t.prelayout, t.route, r.route.attempt, r.route.ripups, t.bends, r.bends.rounds,
-                    t.spacing, r.spacing.rounds, r.spacing.status.c_str(), t.measure,
-                    t.layout - t.fast, t.warp);
-      stage_rows.push_back(row);
+      stage_rows.push_back(stage_row(ref.network, req.name, r));
       if (!layouts_dir.empty()) write_layout(layouts_dir + "/" + ref.network + "-" + req.name + ".json", city.net, drawn);
     }
   }
-  std::printf("\n## Where the time goes (ms, wall)\n\n"
-              "route: octilinear grid routing (the attempt kept, rip-ups); bends: bend reduction (rounds); spacing: the spacing LP (rounds, "
-              "status); measure: the quality report; after: MIP (if any) and the tool's metrics; warp: the "
-              "geographic frame.\n\n"
-              "| network | request | total | visual worth | prelayout | route | bends | spacing | measure | after | warp |\n"
-              "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
-  for (const auto& row : stage_rows) std::fputs(row.c_str(), stdout);
+  print_stages(stage_rows);
   if (!layouts_dir.empty()) {
     std::printf("\nLayouts written; check one with metro_compare.py:\n\n");
     for (const auto& ref : kNetworks)

@@ -85,6 +85,7 @@ Layout route_octilinear(const LayoutGraph& g, const std::vector<XY>& start, cons
   std::vector<int> first;
   bool order_only = false;  // the last attempt lacked nothing but the circular order somewhere
   int attempts = std::max(1, p.attempts);
+  std::vector<GridRouteReport::Attempt> tried;
   for (int a = 1; a <= attempts; ++a) {
     // Each attempt gets its share of the time, so a hard first one leaves room for the next.
     // The first two route freely (fewest bends), the second on a grid twice as fine (room in
@@ -95,11 +96,14 @@ Layout route_octilinear(const LayoutGraph& g, const std::vector<XY>& start, cons
     GridRouteParams variant = p;
     if (a <= 2) variant.corridor_cost = 0;
     const double cell = a == 2 && !order_only ? p.cell / 2 : p.cell;
+    const auto attempt_started = Clock::now();
     auto attempt = octi::RoutingAttempt(g, start, chains, anchor, geo_crossing, variant, cell).run(first, share);
     // The next attempt routes first what this one could not route, or could not route in order.
     first = attempt.failed_chains;
     first.insert(first.end(), attempt.out_of_order_chains.begin(), attempt.out_of_order_chains.end());
     auto attempt_rank = rank(g, geo_pairs, attempt);
+    tried.push_back({cell, std::chrono::duration<double, std::milli>(Clock::now() - attempt_started).count(),
+                     std::get<0>(attempt_rank), std::get<1>(attempt_rank), std::get<2>(attempt_rank), attempt.ripups});
     order_only = std::get<0>(attempt_rank) == 0 && !attempt.out_of_order_chains.empty() &&
                  std::get<1>(attempt_rank) == count_order_violations(g, attempt.layout);
     if (!have || attempt_rank < best_rank) {
@@ -125,6 +129,7 @@ Layout route_octilinear(const LayoutGraph& g, const std::vector<XY>& start, cons
     report->crossing_routes = best.crossing_routes;
     report->crossings = std::get<2>(best_rank);
     report->geo_crossings = geo_pairs.size();
+    report->attempts = std::move(tried);
   }
   return best.layout;
 }

@@ -75,6 +75,13 @@ struct GridRouteReport {
   std::size_t geo_crossings = 0;   // pairs of edges that cross in the geography
   int attempt = 1;
   bool timed_out = false;
+  struct Attempt {                 // every attempt made, in order
+    double cell = 0, ms = 0;
+    std::size_t unrouted = 0;      // failed + overlapping chains
+    std::size_t added = 0;         // added crossings + order violations
+    std::size_t crossings = 0, ripups = 0;
+  };
+  std::vector<Attempt> attempts;
 };
 
 // `start` are the pre-layout positions (layout units) from stress_layout(scale_to_lengths);
