@@ -86,16 +86,23 @@ Layout route_octilinear(const LayoutGraph& g, const std::vector<XY>& start, cons
   bool order_only = false;  // the last attempt lacked nothing but the circular order somewhere
   int attempts = std::max(1, p.attempts);
   std::vector<GridRouteReport::Attempt> tried;
+  bool unrouted = false;  // the last attempt left a chain unrouted (or overlapping)
+  bool tried_fine = false, tried_corridor = false;
   for (int a = 1; a <= attempts; ++a) {
     // Each attempt gets its share of the time, so a hard first one leaves room for the next.
-    // The first two route freely (fewest bends), the second on a grid twice as fine (room in
-    // dense centres) unless all the first lacked was the circular order somewhere (then the
-    // same grid again, those chains first); the third keeps paths in their corridors (so that
-    // detours do not wall stations in).
+    // The first routes freely (fewest bends). The next: when a chain was left unrouted, paths
+    // kept in their corridors (so that detours do not wall stations in: an edge straight across
+    // the city was left unrouted on the finer grid too); when all it lacked was the circular
+    // order somewhere, the same grid again, those chains first; else a grid twice as fine
+    // (room in dense centres); the corridors once the finer grid was tried.
     auto share = begin + (deadline - begin) * a / attempts;
     GridRouteParams variant = p;
-    if (a <= 2) variant.corridor_cost = 0;
-    const double cell = a == 2 && !order_only ? p.cell / 2 : p.cell;
+    const bool corridor = a > 1 && !tried_corridor && (unrouted || tried_fine);
+    const bool fine = a > 1 && !corridor && !order_only && !tried_fine;
+    tried_corridor = tried_corridor || corridor;
+    tried_fine = tried_fine || fine;
+    if (!corridor) variant.corridor_cost = 0;
+    const double cell = fine ? p.cell / 2 : p.cell;
     const auto attempt_started = Clock::now();
     auto attempt = octi::RoutingAttempt(g, start, chains, anchor, geo_crossing, variant, cell).run(first, share);
     // The next attempt routes first what this one could not route, or could not route in order.
@@ -104,6 +111,7 @@ Layout route_octilinear(const LayoutGraph& g, const std::vector<XY>& start, cons
     auto attempt_rank = rank(g, geo_pairs, attempt);
     tried.push_back({cell, std::chrono::duration<double, std::milli>(Clock::now() - attempt_started).count(),
                      std::get<0>(attempt_rank), std::get<1>(attempt_rank), std::get<2>(attempt_rank), attempt.ripups});
+    unrouted = std::get<0>(attempt_rank) > 0;
     order_only = std::get<0>(attempt_rank) == 0 && !attempt.out_of_order_chains.empty() &&
                  std::get<1>(attempt_rank) == count_order_violations(g, attempt.layout);
     if (!have || attempt_rank < best_rank) {
