@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 
 namespace tourmap::metro {
@@ -100,25 +101,35 @@ TEST(StationSpacing, SkipsALayoutThatIsNotOctilinear) {
   EXPECT_EQ(n.layout.pos[4].y, copy.pos[4].y);
 }
 
-// Three parallel lines 1 and 1.5 apart (edges 10 long): the middle one must move away from
-// both without passing either, so the lines keep their order and nothing crosses.
-TEST(StationSpacing, ASqueezedLineStaysBetweenItsNeighbours) {
+// Three parallel lines of three stations at heights ys (edges 10 long, the geography 100 times
+// larger).
+struct Lines {
   LayoutGraph g;
   Layout L;
-  const double ys[] = {0, 1, 2.5};
+};
+
+Lines three_lines(std::array<double, 3> ys) {
+  Lines n;
   for (std::uint32_t line = 0; line < 3; ++line) {
     for (int k = 0; k < 3; ++k) {
-      g.pos.push_back({1000.0 * k, 100 * ys[line]});
-      L.pos.push_back({10.0 * k, ys[line]});
+      n.g.pos.push_back({1000.0 * k, 100 * ys[line]});
+      n.L.pos.push_back({10.0 * k, ys[line]});
     }
     for (std::uint32_t k = 0; k < 2; ++k) {
       const std::uint32_t a = 3 * line + k;
-      g.edges.push_back({a, a + 1});
-      g.edge_lines.push_back({line});
-      L.paths.push_back({L.pos[a], L.pos[a + 1]});
+      n.g.edges.push_back({a, a + 1});
+      n.g.edge_lines.push_back({line});
+      n.L.paths.push_back({n.L.pos[a], n.L.pos[a + 1]});
     }
   }
-  g.min_length.assign(g.edges.size(), 10.0);
+  n.g.min_length.assign(n.g.edges.size(), 10.0);
+  return n;
+}
+
+// Three parallel lines 1 and 1.5 apart (edges 10 long): the middle one must move away from
+// both without passing either, so the lines keep their order and nothing crosses.
+TEST(StationSpacing, ASqueezedLineStaysBetweenItsNeighbours) {
+  auto [g, L] = three_lines({0, 1, 2.5});
   auto report = space_stations(g, L);
   EXPECT_EQ(report.status, "met");
   EXPECT_GE(ratio(g, L), 0.5);
@@ -133,22 +144,7 @@ TEST(StationSpacing, ASqueezedLineStaysBetweenItsNeighbours) {
 // pairs within the rule at the start, the far line is not in it; moving the middle line away
 // from the first brings it too close to the far one, and that pair comes in as a cut.
 TEST(StationSpacing, PairsBroughtTooCloseAreCutIn) {
-  LayoutGraph g;
-  Layout L;
-  const double ys[] = {0, 1, 8};
-  for (std::uint32_t line = 0; line < 3; ++line) {
-    for (int k = 0; k < 3; ++k) {
-      g.pos.push_back({1000.0 * k, 100 * ys[line]});
-      L.pos.push_back({10.0 * k, ys[line]});
-    }
-    for (std::uint32_t k = 0; k < 2; ++k) {
-      const std::uint32_t a = 3 * line + k;
-      g.edges.push_back({a, a + 1});
-      g.edge_lines.push_back({line});
-      L.paths.push_back({L.pos[a], L.pos[a + 1]});
-    }
-  }
-  g.min_length.assign(g.edges.size(), 10.0);
+  auto [g, L] = three_lines({0, 1, 8});
   SpacingParams p;
   p.pair_radius = 1.0;
   p.cut_radius = 0;
