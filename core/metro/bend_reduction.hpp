@@ -47,7 +47,8 @@ struct BendReductionParams {
   double w_turn = 0.15;            // per 45 degrees of a bend's turn beyond the first 45
   double w_displacement = 0.05;    // per squared target length of a node's distance from the geography
   double w_displacement_polish = 0.3;  // the same in the second phase, which may not add bends...
-  double polish_share = 0.3;           // ...and gets this share of the time
+  double polish_share = 0.3;           // ...and gets this share of the time; a bend removed
+  double polish_bend_factor = 30.0;    // there is worth this many first-phase ones (none may be added)
   double w_length = 0.5;           // per squared log of an edge's length over its target...
   double longer_share = 0.2;       // ...times this when it is longer
   double move_radius = 1.5;        // anchor moves, in mean target lengths
