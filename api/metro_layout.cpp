@@ -13,12 +13,17 @@
 namespace tourmap::api {
 namespace {
 
-constexpr int kLayoutVersion = 8;  // 6: bend reduction, quality.compare (the metric tool's figures); 7: clearance in the bend reduction; 8: detour limit in the router, spacing with cuts
+constexpr int kLayoutVersion = 8;  // 6: bend reduction, quality.compare (the metric tool's figures); 7: clearance in the bend reduction; 8: detour limit in the router, spacing with cuts, mm coordinates
 using util::Clock;
 using util::ms_since;
 
 double round1(double v) { return std::round(v * 10) / 10; }
+// Layout coordinates in millimetres: a decimetre bent the short legs of an octilinear path out
+// of their direction (a 1-2 m leg by 1-2 degrees, so the metric tool counted it as a bend and
+// a piece that is not octilinear); the geographic ones keep decimetres.
+double round3(double v) { return std::round(v * 1000) / 1000; }
 nlohmann::json xy(geo::XY p) { return nlohmann::json::array({round1(p.x), round1(p.y)}); }
+nlohmann::json layout_xy(geo::XY p) { return nlohmann::json::array({round3(p.x), round3(p.y)}); }
 
 RankSource rank_from(const std::string& s, const std::string& field) {
   if (s == "auto") return RankSource::automatic;
@@ -208,7 +213,7 @@ std::string layout_body(const CityMetroData& d, const LayoutRequest& req, const 
     if (!n.is_station()) continue;
     stations.push_back({{"type", "Feature"},
                         {"id", n.id},
-                        {"geometry", {{"type", "Point"}, {"coordinates", xy(L.frame.nodes[v])}}},
+                        {"geometry", {{"type", "Point"}, {"coordinates", layout_xy(L.frame.nodes[v])}}},
                         {"properties", {{"id", n.id},
                                         {"station_id", n.station_id},
                                         {"name", n.name},
@@ -220,7 +225,7 @@ std::string layout_body(const CityMetroData& d, const LayoutRequest& req, const 
   nlohmann::json edges = nlohmann::json::array();
   for (std::size_t e = 0; e < net.edges.size(); ++e) {
     nlohmann::json coords = nlohmann::json::array(), geo_coords = nlohmann::json::array();
-    for (const auto& p : L.layout.paths[e]) coords.push_back(xy(frame.apply(p)));
+    for (const auto& p : L.layout.paths[e]) coords.push_back(layout_xy(frame.apply(p)));
     for (const auto& p : net.edges[e].geometry) geo_coords.push_back(xy(geo::project(d.projection, p)));
     edges.push_back({{"type", "Feature"},
                      {"geometry", {{"type", "LineString"}, {"coordinates", std::move(coords)}}},

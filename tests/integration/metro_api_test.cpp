@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <string>
@@ -30,12 +31,15 @@ void expect_error(const HttpResult& r, int status, const std::string& field) {
   }
 }
 
-// Horizontal, vertical or diagonal up to the 0.1 m rounding of the coordinates (each end off
-// by up to 0.05 m per axis, so |dx|, |dy| or their difference may be off by 0.1 m).
+// Horizontal, vertical or diagonal up to the 1 mm rounding of the layout coordinates (each end
+// off by up to 0.5 mm per axis, so |dx|, |dy| or their difference may be off by 1 mm), and
+// within the metric tool's 1 degree of it (a short leg rounded to decimetres was not).
 bool octilinear(const nlohmann::json& a, const nlohmann::json& b) {
   const double dx = std::abs(b[0].get<double>() - a[0].get<double>()), dy = std::abs(b[1].get<double>() - a[1].get<double>());
-  const double slack = 0.1 + 1e-6;
-  return dx <= slack || dy <= slack || std::abs(dx - dy) <= slack;
+  const double slack = 0.001 + 1e-9;
+  const double degrees = std::atan2(dy, dx) * 180 / M_PI;  // 0..90
+  const double off = std::min({degrees, std::abs(degrees - 45), 90 - degrees});
+  return (dx <= slack || dy <= slack || std::abs(dx - dy) <= slack) && off <= 1.0;
 }
 
 TEST_F(MetroApi, LayoutIsOctilinearWithWarpedPoisAndAReport) {
