@@ -13,7 +13,7 @@
 namespace tourmap::api {
 namespace {
 
-constexpr int kLayoutVersion = 8;  // 6: bend reduction, quality.compare (the metric tool's figures); 7: clearance in the bend reduction; 8: detour limit in the router, spacing with cuts, mm coordinates
+constexpr int kLayoutVersion = 8;  // 6: bend reduction, quality.compare (the metric tool's figures); 7: clearance in the bend reduction; 8: detour limit in the router, spacing with cuts, mm coordinates, line order
 using util::Clock;
 using util::ms_since;
 
@@ -91,6 +91,12 @@ nlohmann::json spacing_json(const metro::SpacingReport& s) {
   return {{"status", s.status},     {"gap_before", s.gap_before}, {"gap_after", s.gap_after},
           {"rounds", s.rounds},     {"accepted", s.accepted},     {"columns", s.columns},
           {"rows", s.rows},         {"cuts", s.cuts},             {"time_ms", s.time_ms}};
+}
+
+nlohmann::json line_order_json(const metro::LineOrderReport& o, double ms) {
+  return {{"method", o.method},       {"crossings", o.crossings},   {"separations", o.separations},
+          {"heuristic_crossings", o.heuristic_crossings}, {"lower_bound", o.lower_bound}, {"pairs", o.pairs},
+          {"time_ms", ms}};
 }
 
 nlohmann::json points_json(const std::vector<geo::XY>& points) {
@@ -232,6 +238,7 @@ std::string layout_body(const CityMetroData& d, const LayoutRequest& req, const 
                      {"properties", {{"from", net.nodes[net.edges[e].from].id},
                                      {"to", net.nodes[net.edges[e].to].id},
                                      {"lines", line_ids(net.edges[e].lines)},
+                                     {"line_order", line_ids(L.line_order.order[e])},
                                      {"min_length", round1(frame.scale * L.min_length[e])},
                                      {"geo", std::move(geo_coords)}}}});
   }
@@ -291,6 +298,7 @@ std::string layout_body(const CityMetroData& d, const LayoutRequest& req, const 
       {"lines", std::move(lines)},
       {"quality", quality_json(L.quality, L.compare)},
       {"solver", solver_json(L.solver)},
+      {"line_order", line_order_json(L.line_order.report, L.timing.line_order)},
       {"fast_path", {{"status", report.timed_out ? "time_limit" : report.failed ? "incomplete" : report.overlapping ? "overlapping" : "ok"},
                      {"time_ms", L.timing.fast},
                      {"prelayout_ms", L.timing.prelayout},

@@ -95,6 +95,11 @@ CityLayoutResult layout_city(const CityMetroInput& in, const std::vector<model::
       out.solver.gap = out.solver.mip->gap;
     }
   }
+  // The lines' order along shared track, on the final drawing (the exact model by the caller's
+  // MIP function when there is one; its time is small: the pairs of lines sharing an edge).
+  auto stage2 = Clock::now();
+  out.line_order = order_lines(g, layout, params.mip);
+  out.timing.line_order = ms_since(stage2);
   out.compare = metro_compare_metrics(g, in.is_station, layout);
   out.timing.layout = ms_since(t);
 

@@ -1,7 +1,8 @@
 #pragma once
 // A city's transit-centric tourist map (paper 5.4), as one computation on plain structs:
 // visual worth (5.4.1) -> edge lengths (eq. 5.3, 5.4) -> stress pre-layout -> octilinear grid
-// routing (5.4.2) -> optional MIP polish -> frame, and POIs, mesh and outline warped into the
+// routing (5.4.2) -> bend reduction -> spacing -> optional MIP polish -> the lines' order along
+// shared track -> frame, and POIs, mesh and outline warped into the
 // layout (5.4.3), with the quality report. No JSON, no I/O: api/metro_layout.cpp writes the
 // answer, bench/metro_bench.cpp measures it.
 
@@ -11,6 +12,7 @@
 #include "metro/city_input.hpp"
 #include "metro/layout_metrics.hpp"
 #include "metro/layout_quality.hpp"
+#include "metro/line_order.hpp"
 #include "metro/mip_polish.hpp"
 #include "metro/octilinear_grid.hpp"
 
@@ -47,6 +49,7 @@ struct CityLayoutTimings {  // ms
   double visual_worth = 0, prelayout = 0, fast = 0, layout = 0, warp = 0, total = 0;
   // The fast path's stages (within `fast`): grid routing, bend reduction, spacing, measuring.
   double route = 0, bends = 0, spacing = 0, measure = 0;
+  double line_order = 0;  // the lines' order along shared track (after the MIP, on the final layout)
 };
 
 struct CityLayoutResult {
@@ -62,6 +65,7 @@ struct CityLayoutResult {
   BendReductionReport bends;
   SpacingReport spacing;
   SolverReport solver;
+  LineOrder line_order;              // per edge, its lines left to right (metro/line_order.hpp)
   CityLayoutTimings timing;
 };
 

@@ -80,18 +80,23 @@ async function stationPositions(page) {
   );
 }
 
-/** Every edge segment in screen space: [x0, y0, x1, y1]. */
+/** Every edge segment in screen space: [x0, y0, x1, y1] (a line's path holds one polyline per edge, each begun by M). */
 async function edgeSegments(page) {
   return page.locator('path.edge').evaluateAll((paths) =>
     paths.flatMap((path) => {
       const matrix = path.getScreenCTM();
-      const numbers = (path.getAttribute('d') ?? '').match(/-?\d+(\.\d+)?(e-?\d+)?/g)?.map(Number) ?? [];
-      const points = [];
-      for (let i = 0; i + 1 < numbers.length; i += 2) {
-        const p = new DOMPoint(numbers[i], numbers[i + 1]).matrixTransform(matrix);
-        points.push([p.x, p.y]);
-      }
-      return points.slice(1).map((p, i) => [...points[i], ...p]);
+      return (path.getAttribute('d') ?? '')
+        .split('M')
+        .filter(Boolean)
+        .flatMap((polyline) => {
+          const numbers = polyline.match(/-?\d+(\.\d+)?(e-?\d+)?/g)?.map(Number) ?? [];
+          const points = [];
+          for (let i = 0; i + 1 < numbers.length; i += 2) {
+            const p = new DOMPoint(numbers[i], numbers[i + 1]).matrixTransform(matrix);
+            points.push([p.x, p.y]);
+          }
+          return points.slice(1).map((p, i) => [...points[i], ...p]);
+        });
     }),
   );
 }

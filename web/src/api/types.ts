@@ -270,6 +270,8 @@ export interface LayoutEdgeProperties {
   from: string;
   to: string;
   lines: string[];
+  /** The lines left to right as seen travelling along the coordinates. */
+  line_order?: string[];
   /** The geographic track in the frame. */
   geo: XY[];
   min_length?: number;

@@ -69,23 +69,33 @@ export function geoGrid(layout: LayoutResponse, placement: Placement): Pt[][] {
  */
 export function layoutGeometry(layout: LayoutResponse, placement: Placement, edges: readonly DrawnEdge[], geo: Geometry): Geometry {
   const place = (p: XY) => placement.toFrame(p);
-  const byEnds = new Map<string, XY[][]>();
+  type Found = { points: XY[]; order: string[] | undefined };
+  const byEnds = new Map<string, Found[]>();
   for (const edge of layout.edges.features) {
     const key = `${edge.properties.from}\u0000${edge.properties.to}`;
-    byEnds.set(key, [...(byEnds.get(key) ?? []), edge.geometry.coordinates]);
+    byEnds.set(key, [...(byEnds.get(key) ?? []), { points: edge.geometry.coordinates, order: edge.properties.line_order }]);
   }
-  // Parallel edges between the same stations are matched in order.
-  const take = (from: string, to: string): Pt[] | undefined => {
+  // Parallel edges between the same stations are matched in order. An edge drawn the other way
+  // round has its points, and its lines' order (left to right along them), reversed.
+  const take = (from: string, to: string): { points: Pt[]; order: string[] | undefined } | undefined => {
     const forward = byEnds.get(`${from}\u0000${to}`);
-    if (forward?.length) return forward.shift()!.map(place);
+    if (forward?.length) {
+      const found = forward.shift()!;
+      return { points: found.points.map(place), order: found.order };
+    }
     const backward = byEnds.get(`${to}\u0000${from}`);
-    if (backward?.length) return backward.shift()!.map(place).reverse();
+    if (backward?.length) {
+      const found = backward.shift()!;
+      return { points: found.points.map(place).reverse(), order: found.order ? [...found.order].reverse() : undefined };
+    }
     return undefined;
   };
+  const taken = edges.map((edge) => take(edge.from, edge.to));
   return {
     stations: new Map(layout.stations.features.map((station) => [station.properties.id, place(station.geometry.coordinates)])),
     pois: new Map(layout.pois.features.map((poi) => [poi.properties.id, place(poi.geometry.coordinates)])),
-    edges: edges.map((edge, i) => take(edge.from, edge.to) ?? geo.edges[i] ?? []),
+    edges: taken.map((found, i) => found?.points ?? geo.edges[i] ?? []),
     grid: gridLines(layout.mesh.cols, layout.mesh.rows, layout.mesh.layout, layout.outline.layout, place),
+    orders: taken.map((found) => found?.order),
   };
 }

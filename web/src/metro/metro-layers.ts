@@ -4,6 +4,7 @@ import type { Frame } from '../map/projection';
 import { polylinePath, svg } from '../map/svg';
 import type { Anchor, SvgMap } from '../map/svg-map';
 import { MapTooltip } from '../map/tooltip';
+import { bundlePieces, LINE_SPACING_PX } from './bundles';
 import { lineColor } from './lines';
 import type { Geometry, Pt } from './morph';
 
@@ -32,12 +33,20 @@ interface Marked<F> {
 
 /** An edge drawn, with the stations it joins (how a layout's edge finds it). */
 export interface DrawnEdge {
-  element: SVGPathElement;
   from: string;
   to: string;
   lines: string[];
+}
+
+/** One line's strokes: along its edges, and its joins through the stations. */
+interface DrawnLine {
+  stroke: SVGPathElement;
+  joins: SVGPathElement;
   color: string;
 }
+
+/** The casing under bundles of this many lines is this much wider than the bundle, px. */
+const CASING_MARGIN_PX = 3.5;
 
 /**
  * A city's metro network and POIs drawn on a map: edges in the world layers, station and POI
@@ -56,10 +65,17 @@ export class MetroLayers {
   private readonly stations = new Map<string, Marked<StationFeature> & { label: Label }>();
   private readonly pois = new Map<string, Marked<PoiFeature>>();
   private readonly edges: DrawnEdge[] = [];
-  private readonly casing: SVGPathElement;
+  private readonly drawnLines = new Map<string, DrawnLine>();
+  /** Per edge, its lines left to right along the edge (the layout's order, else as listed). */
+  private orders: string[][] = [];
+  /** Casings by bundle size (one white stroke under all edges of that many lines). */
+  private readonly casings = new Map<number, SVGPathElement>();
+  private readonly casingLayer: SVGGElement;
+  /** The map scale the bundles were last drawn for (their spacing is in screen pixels). */
+  private drawnScale = 0;
+  private readonly stopRender: () => void;
   private readonly gridPath: SVGPathElement;
   private readonly labels: Label[] = [];
-  private readonly lines: Map<string, MetroLine>;
   private readonly poiLayer: SVGGElement;
   private readonly labelLayer: SVGGElement;
   private readonly tooltip: MapTooltip;
@@ -82,15 +98,13 @@ export class MetroLayers {
   ) {
     map.clear();
     const lines = new Map(metro.lines.map((line) => [line.id, line]));
-    this.lines = lines;
     const edgeFeatures = metro.features.filter((f): f is EdgeFeature => f.properties.kind === 'edge');
     const stationFeatures = metro.features.filter((f): f is StationFeature => f.properties.kind === 'station');
 
     this.heatLayer = map.addLayer('heat', 'world');
     this.gridPath = svg('path', { class: 'warp-grid' });
     map.addLayer('grid', 'world').append(this.gridPath);
-    this.casing = svg('path', { class: 'edge-casing' });
-    map.addLayer('casing', 'world').append(this.casing);
+    this.casingLayer = map.addLayer('casing', 'world');
     this.drawEdges(map.addLayer('edges', 'world'), edgeFeatures, lines);
     this.poiLayer = map.addLayer('pois', 'screen');
     const stationLayer = map.addLayer('stations', 'screen');
@@ -112,6 +126,10 @@ export class MetroLayers {
     this.tooltip = new MapTooltip(map.element);
     this.listen();
     this.stopSettle = map.onSettle(() => this.settle());
+    // Parallel lines keep their spacing in pixels: redrawn when the zoom changes it.
+    this.stopRender = map.onRender(() => {
+      if (Math.abs(this.map.scale / this.drawnScale - 1) > 0.02) this.drawPaths(this.current);
+    });
     this.settle();
   }
 
@@ -121,11 +139,10 @@ export class MetroLayers {
    */
   highlightLine(lineId: string | null): void {
     const dimmed = (lines: string[]) => lineId !== null && !lines.includes(lineId);
-    const highlightColor = lineId === null ? '' : lineColor(this.lines.get(lineId));
-    for (const edge of this.edges) {
-      const off = dimmed(edge.lines);
-      edge.element.classList.toggle('dimmed', off);
-      edge.element.setAttribute('stroke', lineId === null || off ? edge.color : highlightColor);
+    for (const [id, line] of this.drawnLines) {
+      const off = lineId !== null && id !== lineId;
+      line.stroke.classList.toggle('dimmed', off);
+      line.joins.classList.toggle('dimmed', off);
     }
     for (const { feature, element, label } of this.stations.values()) {
       const off = dimmed(feature.properties.lines);
@@ -160,6 +177,7 @@ export class MetroLayers {
    */
   setGeometry(geometry: Geometry, final: boolean): void {
     this.current = geometry;
+    if (geometry.orders) this.orders = this.validOrders(geometry.orders);
     for (const [id, { anchor, label }] of this.stations) {
       const point = geometry.stations.get(id);
       if (!point) continue;
@@ -214,32 +232,76 @@ export class MetroLayers {
     if (marked) this.map.reveal(marked.anchor.x, marked.anchor.y);
   }
 
+  /** Per drawn edge, its lines left to right: only an order of exactly the edge's lines is taken. */
+  private validOrders(orders: (string[] | undefined)[]): string[][] {
+    return this.edges.map((edge, i) => {
+      const order = orders[i];
+      return order && order.length === edge.lines.length && order.every((id) => edge.lines.includes(id)) ? order : edge.lines;
+    });
+  }
+
   destroy(): void {
     this.listeners.abort();
     this.stopSettle();
+    this.stopRender();
     this.tooltip.destroy();
     this.map.clear();
   }
 
   private drawEdges(edgeLayer: SVGGElement, features: EdgeFeature[], lines: Map<string, MetroLine>): void {
     for (const feature of features) {
-      const color = lineColor(lines.get(feature.properties.lines[0] ?? ''));
-      const element = svg('path', { class: 'edge', stroke: color, 'data-from': feature.properties.from, 'data-to': feature.properties.to });
-      edgeLayer.append(element);
       const { from, to, lines: lineIds } = feature.properties;
-      this.edges.push({ element, from, to, lines: lineIds, color });
+      this.edges.push({ from, to, lines: lineIds });
+      for (const id of lineIds) {
+        if (this.drawnLines.has(id)) continue;
+        const color = lineColor(lines.get(id));
+        const stroke = svg('path', { class: 'edge', stroke: color, 'data-line': id });
+        const joins = svg('path', { class: 'edge-join', stroke: color, 'data-line': id });
+        edgeLayer.append(stroke, joins);
+        this.drawnLines.set(id, { stroke, joins, color });
+      }
     }
+    this.orders = this.edges.map((edge) => edge.lines);
   }
 
+  /**
+   * Each line its own stroke, side by side where lines share an edge (in the edge's order),
+   * joined through the stations; under each bundle a white casing as wide as the bundle.
+   */
   private drawPaths(geometry: Geometry): void {
-    const paths: string[] = [];
-    this.edges.forEach((edge, i) => {
-      const d = polylinePath(geometry.edges[i] ?? []);
-      paths.push(d);
-      edge.element.setAttribute('d', d);
-    });
-    // One white casing under all edges keeps crossing lines apart.
-    this.casing.setAttribute('d', paths.join(''));
+    const scale = this.map.scale > 0 ? this.map.scale : 1;
+    this.drawnScale = scale;
+    const spacing = LINE_SPACING_PX / scale;
+    const bundles = this.edges.map((edge, i) => ({
+      from: edge.from,
+      to: edge.to,
+      points: geometry.edges[i] ?? [],
+      order: this.orders[i] ?? edge.lines,
+    }));
+    const pieces = bundlePieces(
+      bundles.filter((b) => b.points.length > 1),
+      spacing,
+    );
+    for (const [id, line] of this.drawnLines) {
+      line.stroke.setAttribute('d', (pieces.strokes.get(id) ?? []).map(polylinePath).join(''));
+      line.joins.setAttribute('d', (pieces.joins.get(id) ?? []).map(polylinePath).join(''));
+    }
+    const bySize = new Map<number, string[]>();
+    for (const bundle of bundles) {
+      const size = Math.max(1, bundle.order.length);
+      bySize.set(size, [...(bySize.get(size) ?? []), polylinePath(bundle.points)]);
+    }
+    for (const [size, paths] of bySize) {
+      let casing = this.casings.get(size);
+      if (!casing) {
+        casing = svg('path', { class: 'edge-casing' });
+        casing.style.strokeWidth = `${size * LINE_SPACING_PX + CASING_MARGIN_PX}px`;
+        // Wider casings first, so a narrower bundle's casing never hides a wider one's lines.
+        this.casingLayer.prepend(casing);
+        this.casings.set(size, casing);
+      }
+      casing.setAttribute('d', paths.join(''));
+    }
     this.gridPath.setAttribute('d', geometry.grid.map(polylinePath).join(''));
   }
 

@@ -11,6 +11,8 @@ export interface Geometry {
   pois: Map<string, Pt>;
   /** The warp mesh's rows and columns and the network's outline; empty when unknown. */
   grid: Pt[][];
+  /** Per edge, its lines left to right along it (the layout's line order); absent: as listed. */
+  orders?: (string[] | undefined)[];
 }
 
 export const easeInOutCubic = (t: number): number => (t < 0.5 ? 4 * t * t * t : 1 - (-2 * t + 2) ** 3 / 2);
@@ -87,6 +89,7 @@ export class Morph {
       pois: points(this.from.pois, this.to.pois),
       edges: polylines(this.edgePairs),
       grid: this.gridPairs ? polylines(this.gridPairs) : this.to.grid,
+      orders: this.to.orders ?? this.from.orders,
     };
   }
 }

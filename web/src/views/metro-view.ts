@@ -365,13 +365,15 @@ export class MetroView implements View {
       entry = fetchLayout(city.id, params, signal).then((answer) => {
         const placement = Placement.fit(answer.layout, frame);
         this.layoutsReady.add(key);
+        const geometry = layoutGeometry(answer.layout, placement, layers.drawnEdges, layers.geo);
         return {
           ...answer,
           key,
           params,
           placement,
-          geometry: layoutGeometry(answer.layout, placement, layers.drawnEdges, layers.geo),
-          geoGeometry: { ...layers.geo, grid: geoGrid(answer.layout, placement) },
+          geometry,
+          // The geographic drawing keeps the layout's line order (the same track, the same sides).
+          geoGeometry: { ...layers.geo, grid: geoGrid(answer.layout, placement), orders: geometry.orders },
           poiPositions: new Map(answer.layout.pois.features.map((poi) => [poi.properties.id, poi.geometry.coordinates])),
         };
       });
