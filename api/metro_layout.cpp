@@ -99,6 +99,40 @@ nlohmann::json line_order_json(const metro::LineOrderReport& o, double ms) {
           {"time_ms", ms}};
 }
 
+double round_px(double v) { return std::round(v * 10) / 10; }
+
+// Station names per zoom (metro/station_labels.hpp). Each label is [station index (into the
+// stations' features), x0, y0, x1, y1 (its box), text x, text y (the first line's baseline),
+// anchor ("s", "m", "e"), split (byte where the second line begins, 0: one line)], in px from
+// the station's point, x right and y down.
+nlohmann::json labels_json(const metro::CityLayoutResult& L, const std::vector<int>& station_index, double metres_per_unit) {
+  const metro::LabelStyle style;
+  double mean_unit = 0;
+  for (const auto& path : L.layout.paths)
+    for (std::size_t i = 1; i < path.size(); ++i) mean_unit += std::hypot(path[i].x - path[i - 1].x, path[i].y - path[i - 1].y);
+  if (!L.layout.paths.empty()) mean_unit /= static_cast<double>(L.layout.paths.size());
+  nlohmann::json scales = nlohmann::json::array();
+  for (const auto& scale : L.labels) {
+    nlohmann::json labels = nlohmann::json::array();
+    for (const auto& l : scale.labels) {
+      if (station_index[l.node] < 0) continue;
+      labels.push_back({station_index[l.node], round_px(l.x0), round_px(l.y0), round_px(l.x1), round_px(l.y1),
+                        round_px(l.text_x), round_px(l.text_y), std::string(1, l.anchor), l.split});
+    }
+    scales.push_back({{"mean_edge_px", scale.mean_edge_px},
+                      {"px_per_m", scale.px_per_unit / metres_per_unit},
+                      {"symbol_px", scale.symbol_px},
+                      {"unlabelled", scale.unlabelled},
+                      {"labels", std::move(labels)}});
+  }
+  return {{"font", {{"family", metro::kLabelFontFamily}, {"weight", "bold"}, {"size_px", style.font_px}, {"line_px", style.line_px}}},
+          {"symbol", {{"share", style.symbol_share}, {"min_px", style.symbol_min_px}, {"max_px", style.symbol_max_px}}},
+          {"line_spacing_px", style.line_spacing_px},
+          {"mean_edge_m", mean_unit * metres_per_unit},
+          {"time_ms", L.timing.labels},
+          {"scales", std::move(scales)}};
+}
+
 nlohmann::json points_json(const std::vector<geo::XY>& points) {
   nlohmann::json out = nlohmann::json::array();
   for (const auto& p : points) out.push_back(xy(p));
@@ -214,9 +248,11 @@ std::string layout_body(const CityMetroData& d, const LayoutRequest& req, const 
       for (auto v : {e.from, e.to})
         if (std::find(node_lines[v].begin(), node_lines[v].end(), l) == node_lines[v].end()) node_lines[v].push_back(l);
   nlohmann::json stations = nlohmann::json::array();
+  std::vector<int> station_index(net.nodes.size(), -1);  // node -> its feature's index
   for (std::size_t v = 0; v < net.nodes.size(); ++v) {
     const auto& n = net.nodes[v];
     if (!n.is_station()) continue;
+    station_index[v] = static_cast<int>(stations.size());
     stations.push_back({{"type", "Feature"},
                         {"id", n.id},
                         {"geometry", {{"type", "Point"}, {"coordinates", layout_xy(L.frame.nodes[v])}}},
@@ -299,6 +335,7 @@ std::string layout_body(const CityMetroData& d, const LayoutRequest& req, const 
       {"quality", quality_json(L.quality, L.compare)},
       {"solver", solver_json(L.solver)},
       {"line_order", line_order_json(L.line_order.report, L.timing.line_order)},
+      {"labels", labels_json(L, station_index, frame.scale)},
       {"fast_path", {{"status", report.timed_out ? "time_limit" : report.failed ? "incomplete" : report.overlapping ? "overlapping" : "ok"},
                      {"time_ms", L.timing.fast},
                      {"prelayout_ms", L.timing.prelayout},

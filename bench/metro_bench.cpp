@@ -163,6 +163,29 @@ std::string order_row(const std::string& network, const std::string& request, co
   return row;
 }
 
+// A row of the labels table: time, and labelled / all at each scale.
+std::string labels_row(const std::string& network, const std::string& request, const metro::CityLayoutResult& r,
+                       std::size_t stations) {
+  char cell[64];
+  std::snprintf(cell, sizeof cell, "| %s | %s | %.0f |", network.c_str(), request.c_str(), r.timing.labels);
+  std::string row = cell;
+  for (const auto& scale : r.labels) {
+    std::snprintf(cell, sizeof cell, " %zu/%zu |", scale.labels.size(), stations);
+    row.append(cell);
+  }
+  return row.append("\n");
+}
+
+void print_labels(const std::vector<std::string>& rows) {
+  std::printf("\n## Station names\n\nStations named at each zoom (the mean edge on screen, px; symbols 12 px across from 60 "
+              "px on), and the placement's time for all zooms.\n\n| network | request | time ms |");
+  for (double e : metro::kLabelMeanEdgesPx) std::printf(" %.0f px |", e);
+  std::printf("\n|---|---|---:|");
+  for (std::size_t i = 0; i < metro::kLabelMeanEdgesPx.size(); ++i) std::printf("---:|");
+  std::printf("\n");
+  for (const auto& row : rows) std::fputs(row.c_str(), stdout);
+}
+
 void print_orders(const std::vector<std::string>& rows) {
   std::printf("\n## Line order along shared track\n\n"
               "pairs: line pairs sharing an edge (the model's variables); crossings: of the heuristic start and of "
@@ -258,6 +281,7 @@ int main(int argc, char** argv) {
   if (!layouts_dir.empty()) std::filesystem::create_directories(layouts_dir);
   std::vector<std::string> stage_rows;  // the second table: where each request's time went
   std::vector<std::string> order_rows;  // the third: the lines' order
+  std::vector<std::string> label_rows;  // the fourth: station names
   auto manifest = nlohmann::json::parse(load::read_file(TOURMAP_MANIFEST));
   if (!layouts_dir.empty()) std::filesystem::create_directories(layouts_dir);
   if (variants) return run_variants(manifest, data_dir, only_city, time_limit_s, layouts_dir);
@@ -316,11 +340,22 @@ int main(int argc, char** argv) {
       std::fflush(stdout);
       stage_rows.push_back(stage_row(ref.network, req.name, r));
       order_rows.push_back(order_row(ref.network, req.name, r));
+      label_rows.push_back(labels_row(ref.network, req.name, r, in.station_count));
+      if (std::getenv("TM_LABELS")) {
+        for (std::size_t k = 0; k < r.labels.size(); ++k) {
+          if (metro::kLabelMeanEdgesPx[k] != std::atof(std::getenv("TM_LABELS"))) continue;
+          std::vector<bool> has(in.names.size(), false);
+          for (const auto& l : r.labels[k].labels) has[l.node] = true;
+          for (std::size_t v = 0; v < in.names.size(); ++v)
+            if (!in.names[v].empty() && !has[v]) std::fprintf(stderr, "%s %s unlabelled at %.0f: %s\n", ref.network, req.name, metro::kLabelMeanEdgesPx[k], in.names[v].c_str());
+        }
+      }
       if (!layouts_dir.empty()) write_layout(layouts_dir + "/" + ref.network + "-" + req.name + ".json", city.net, drawn);
     }
   }
   print_stages(stage_rows);
   print_orders(order_rows);
+  print_labels(label_rows);
   if (!layouts_dir.empty()) {
     std::printf("\nLayouts written; check one with metro_compare.py:\n\n");
     for (const auto& ref : kNetworks)

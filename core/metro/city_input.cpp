@@ -13,7 +13,10 @@ CityMetroInput make_city_metro_input(const model::MetroNetwork& net, const std::
   d.projection = projection;
   d.graph = layout_graph_of(net, projection);  // lengths are set per layout
   d.station_count = net.station_count();
-  for (const auto& node : net.nodes) d.is_station.push_back(node.is_station());
+  for (const auto& node : net.nodes) {
+    d.is_station.push_back(node.is_station());
+    d.names.push_back(node.is_station() ? node.name : std::string());
+  }
 
   // Proximity rho_i (5.4.1): nearest station per POI by a kd-tree in the plane, then the
   // geodesic distance to it.

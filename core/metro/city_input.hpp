@@ -8,6 +8,7 @@
 #include "model/metro.hpp"
 #include "model/poi.hpp"
 
+#include <string>
 #include <vector>
 
 namespace tourmap::metro {
@@ -28,6 +29,7 @@ struct CityMetroInput {
   bool has_rank = false;               // some POI has a rank or popularity in the data
   std::size_t station_count = 0;       // nodes that are stations (not junctions)
   std::vector<bool> is_station;        // per node
+  std::vector<std::string> names;      // per node: the station's name (empty for a junction)
 };
 
 CityMetroInput make_city_metro_input(const model::MetroNetwork& net, const std::vector<model::Poi>& pois,

@@ -103,6 +103,14 @@ CityLayoutResult layout_city(const CityMetroInput& in, const std::vector<model::
   const MipSolveFn in_process = [](const MipModel& m, double t, double gap) { return solve_with_cbc(m, t, gap); };
   out.line_order = order_lines(g, layout, in_process);
   out.timing.line_order = ms_since(stage2);
+  // Station names per zoom: interchanges and termini first, then by visual worth.
+  stage2 = Clock::now();
+  StationLabelInput names;
+  names.names = in.names;
+  names.priority = out.node_worth;
+  for (const auto& order : out.line_order.order) names.lines.push_back(order.size());
+  out.labels = place_station_labels(g, layout, names, kLabelMeanEdgesPx);
+  out.timing.labels = ms_since(stage2);
   out.compare = metro_compare_metrics(g, in.is_station, layout);
   out.timing.layout = ms_since(t);
 

@@ -13,6 +13,7 @@
 #include "metro/layout_metrics.hpp"
 #include "metro/layout_quality.hpp"
 #include "metro/line_order.hpp"
+#include "metro/station_labels.hpp"
 #include "metro/mip_polish.hpp"
 #include "metro/octilinear_grid.hpp"
 
@@ -50,6 +51,7 @@ struct CityLayoutTimings {  // ms
   // The fast path's stages (within `fast`): grid routing, bend reduction, spacing, measuring.
   double route = 0, bends = 0, spacing = 0, measure = 0;
   double line_order = 0;  // the lines' order along shared track (after the MIP, on the final layout)
+  double labels = 0;      // the station names' placements
 };
 
 struct CityLayoutResult {
@@ -66,8 +68,13 @@ struct CityLayoutResult {
   SpacingReport spacing;
   SolverReport solver;
   LineOrder line_order;              // per edge, its lines left to right (metro/line_order.hpp)
+  std::vector<LabelScale> labels;    // station names placed per zoom (metro/station_labels.hpp)
   CityLayoutTimings timing;
 };
+
+// The zooms station names are placed for: the mean edge on screen, px. Symbols reach 12 px
+// across (LabelStyle: a tenth of the mean edge in radius) from a mean edge of 60 px on.
+inline const std::vector<double> kLabelMeanEdgesPx = {15, 22, 33, 50, 75, 112, 168};
 
 // Throws std::invalid_argument when params.rank is `data` and no POI has a rank. `pois` are
 // the POIs `in` was made from (their prominence gives the ranks).

@@ -96,7 +96,7 @@ async function drawing(page) {
     const world = document.querySelector('.map-world');
     const toFrame = world.getScreenCTM().inverse();
     const stations = {};
-    for (const circle of document.querySelectorAll('circle.station')) {
+    for (const circle of document.querySelectorAll('g.station')) {
       const box = circle.getBoundingClientRect();
       const p = new DOMPoint(box.x + box.width / 2, box.y + box.height / 2).matrixTransform(toFrame);
       stations[circle.getAttribute('data-id')] = [p.x, p.y];

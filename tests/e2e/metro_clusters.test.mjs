@@ -70,7 +70,7 @@ async function checkAgainstApi(baseUrl, state, what) {
 
 /** Screen positions of the station markers, by station id. */
 async function stationPositions(page) {
-  return page.locator('circle.station').evaluateAll((circles) =>
+  return page.locator('g.station').evaluateAll((circles) =>
     Object.fromEntries(
       circles.map((circle) => {
         const box = circle.getBoundingClientRect();

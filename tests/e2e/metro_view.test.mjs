@@ -19,7 +19,7 @@ async function pickCity(page, cityId) {
     timeout: STEP_TIMEOUT_MS,
   });
   return {
-    stations: await page.locator('circle.station').count(),
+    stations: await page.locator('g.station').count(),
     pois: await page.locator('.poi').count(),
     hash: await page.evaluate(() => window.location.hash),
   };

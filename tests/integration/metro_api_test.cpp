@@ -78,6 +78,56 @@ TEST_F(MetroApi, LayoutIsOctilinearWithWarpedPoisAndAReport) {
   EXPECT_EQ(again.body, uniform.body);
 }
 
+// The served station names: at every zoom no two overlap, and none lies on an edge (half its
+// bundle of parallel lines wide); more zoom, at least as many names.
+TEST_F(MetroApi, StationNamesNeverOverlap) {
+  auto r = live->get("/api/v1/cities/vienna/layout");
+  ASSERT_EQ(r.status, 200) << r.body;
+  auto l = nlohmann::json::parse(r.body);
+  ASSERT_TRUE(l.contains("labels"));
+  const auto& labels = l["labels"];
+  const auto& stations = l["stations"]["features"];
+  const double spacing = labels["line_spacing_px"].get<double>();
+  ASSERT_GE(labels["scales"].size(), 3u);
+  std::size_t previous = 0;
+  for (const auto& scale : labels["scales"]) {
+    const double k = scale["px_per_m"].get<double>();  // px per metre
+    struct Box {
+      double x0, y0, x1, y1;
+    };
+    std::vector<Box> boxes;  // metres, y north
+    for (const auto& label : scale["labels"]) {
+      const auto& at = stations.at(label[0].get<std::size_t>())["geometry"]["coordinates"];
+      const double x = at[0].get<double>(), y = at[1].get<double>();
+      boxes.push_back({x + label[1].get<double>() / k, y - label[4].get<double>() / k, x + label[3].get<double>() / k,
+                       y - label[2].get<double>() / k});
+    }
+    for (std::size_t i = 0; i < boxes.size(); ++i)
+      for (std::size_t j = i + 1; j < boxes.size(); ++j) {
+        const auto &a = boxes[i], &b = boxes[j];
+        EXPECT_FALSE(a.x0 < b.x1 && b.x0 < a.x1 && a.y0 < b.y1 && b.y0 < a.y1) << "labels " << i << " and " << j;
+      }
+    for (const auto& e : l["edges"]["features"]) {
+      const double half = e["properties"]["lines"].size() * spacing / 2 / k;
+      const auto& c = e["geometry"]["coordinates"];
+      for (std::size_t s = 1; s < c.size(); ++s) {
+        // Octilinear pieces: sample the segment every metre-ish and test the thickened point.
+        const double x0 = c[s - 1][0], y0 = c[s - 1][1], x1 = c[s][0], y1 = c[s][1];
+        const int steps = std::max(1, static_cast<int>(std::hypot(x1 - x0, y1 - y0) / (half + 1e-9)));
+        for (int t = 0; t <= steps; ++t) {
+          const double px = x0 + (x1 - x0) * t / steps, py = y0 + (y1 - y0) * t / steps;
+          for (const auto& b : boxes)
+            EXPECT_FALSE(px > b.x0 + half && px < b.x1 - half && py > b.y0 + half && py < b.y1 - half)
+                << "a label over edge " << e["properties"]["from"] << " at scale " << scale["mean_edge_px"];
+        }
+      }
+    }
+    EXPECT_GE(scale["labels"].size(), previous);
+    previous = scale["labels"].size();
+  }
+  EXPECT_EQ(labels["font"]["family"], "DejaVu Sans Condensed");
+}
+
 TEST_F(MetroApi, PostLayoutAndMip) {
   auto r = http_request(live->port(), "POST", "/api/v1/cities/lisbon/layout", {{"Content-Type", "application/json"}},
                         R"({"solver":"mip","lengths":"uniform","time_limit_s":3})");

@@ -331,6 +331,23 @@ export interface LayoutSolver {
   mip?: { accepted?: boolean; status?: string; reason?: string; time_ms?: number; gap?: number | null };
 }
 
+/**
+ * Station names placed by the server for a set of zooms (metro/station_labels.hpp). A label is
+ * [station index into stations.features, x0, y0, x1, y1 (its box), text x, text y (the first
+ * line's baseline), anchor ('s' start, 'm' middle, 'e' end), split (byte where a second line
+ * begins; 0: one line)], in px from the station's point, y down.
+ */
+export type LayoutLabel = [number, number, number, number, number, number, number, 's' | 'm' | 'e', number];
+
+export interface LayoutLabels {
+  font: { family: string; weight: string; size_px: number; line_px: number };
+  /** A symbol's radius: share * the mean edge on screen, within [min_px, max_px]. */
+  symbol: { share: number; min_px: number; max_px: number };
+  line_spacing_px: number;
+  mean_edge_m: number;
+  scales: { mean_edge_px: number; px_per_m: number; symbol_px: number; unlabelled: number; labels: LayoutLabel[] }[];
+}
+
 export interface LayoutResponse {
   city: string;
   version: number;
@@ -350,6 +367,7 @@ export interface LayoutResponse {
   lines: MetroLine[];
   quality: LayoutQuality;
   solver: LayoutSolver;
+  labels?: LayoutLabels;
   timing_ms: { visual_worth?: number; layout?: number; warp?: number; total?: number };
   params: Record<string, string | number>;
   attribution: string[];

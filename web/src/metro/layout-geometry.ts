@@ -1,6 +1,6 @@
-import type { LayoutResponse, XY } from '../api/types';
+import type { LayoutLabel, LayoutResponse, XY } from '../api/types';
 import type { Frame } from '../map/projection';
-import type { DrawnEdge } from './metro-layers';
+import type { DrawnEdge, ServerLabels } from './metro-layers';
 import type { Geometry, Pt } from './morph';
 
 /**
@@ -97,5 +97,23 @@ export function layoutGeometry(layout: LayoutResponse, placement: Placement, edg
     edges: taken.map((found, i) => found?.points ?? geo.edges[i] ?? []),
     grid: gridLines(layout.mesh.cols, layout.mesh.rows, layout.mesh.layout, layout.outline.layout, place),
     orders: taken.map((found) => found?.order),
+  };
+}
+
+/** The server's station names, by station id per zoom, placed on the map by `placement`. */
+export function serverLabels(layout: LayoutResponse, placement: Placement): ServerLabels | null {
+  if (!layout.labels) return null;
+  const ids = layout.stations.features.map((station) => station.properties.id);
+  return {
+    info: layout.labels,
+    framePerMetre: placement.scale,
+    byScale: layout.labels.scales.map((scale) => {
+      const byId = new Map<string, LayoutLabel>();
+      for (const label of scale.labels) {
+        const id = ids[label[0]];
+        if (id !== undefined) byId.set(id, label);
+      }
+      return byId;
+    }),
   };
 }

@@ -1,4 +1,4 @@
-import type { EdgeFeature, MetroCollection, MetroLine, PoiFeature, StationFeature } from '../api/types';
+import type { EdgeFeature, LayoutLabel, LayoutLabels, MetroCollection, MetroLine, PoiFeature, StationFeature } from '../api/types';
 import { LABEL_FONT, labelWidth, placeLabels, type Box, type Label } from '../map/labels';
 import type { Frame } from '../map/projection';
 import { polylinePath, svg } from '../map/svg';
@@ -31,11 +31,33 @@ interface Marked<F> {
   anchor: Anchor;
 }
 
+/** A station's marker: a group placed at the station, holding its symbol. */
+interface StationMarker {
+  symbol: SVGRectElement;
+}
+
 /** An edge drawn, with the stations it joins (how a layout's edge finds it). */
 export interface DrawnEdge {
   from: string;
   to: string;
   lines: string[];
+}
+
+/**
+ * Station names placed by the server (metro/station_labels.hpp) for the octilinear layout: per
+ * zoom, each named station's label, and how the layout's metres map to the frame.
+ */
+export interface ServerLabels {
+  info: LayoutLabels;
+  /** Frame units per metre of the layout (Placement.scale). */
+  framePerMetre: number;
+  /** Per scale (the order of info.scales): station id -> its label. */
+  byScale: Map<string, LayoutLabel>[];
+}
+
+/** The labels' font as the server measured it (DejaVu Sans Condensed Bold); fallbacks are scaled to its widths. */
+function serverFont(info: LayoutLabels): string {
+  return `${info.font.weight} ${info.font.size_px}px "${info.font.family}", "DejaVu Sans", "Arial Narrow", sans-serif`;
 }
 
 /** One line's strokes: along its edges, and its joins through the stations. */
@@ -62,7 +84,8 @@ export class MetroLayers {
   readonly geo: Geometry;
   readonly heatLayer: SVGGElement;
   readonly clusterLayer: SVGGElement;
-  private readonly stations = new Map<string, Marked<StationFeature> & { label: Label }>();
+  private readonly stations = new Map<string, Marked<StationFeature> & StationMarker & { label: Label }>();
+  private serverLabels: ServerLabels | null = null;
   private readonly pois = new Map<string, Marked<PoiFeature>>();
   private readonly edges: DrawnEdge[] = [];
   private readonly drawnLines = new Map<string, DrawnLine>();
@@ -84,7 +107,6 @@ export class MetroLayers {
   private selected?: SVGElement;
   /** Median straight distance between the ends of an edge, in frame units. */
   private typicalGap: number;
-  private markerScale = 0;
   private current: Geometry;
   private obstacles: () => Box[] = () => [];
   private moving = false;
@@ -194,7 +216,6 @@ export class MetroLayers {
     this.map.requestRender();
     if (final) {
       this.typicalGap = medianGap(geometry.edges);
-      this.markerScale = 0;
       this.settle();
     }
   }
@@ -230,6 +251,17 @@ export class MetroLayers {
   reveal(pick: MetroPick): void {
     const marked = this.marked(pick);
     if (marked) this.map.reveal(marked.anchor.x, marked.anchor.y);
+  }
+
+  /**
+   * Names placed by the server (the octilinear layout's), or null: the client places them (the
+   * geographic map). Symbols then grow with the zoom as the server assumed.
+   */
+  setServerLabels(labels: ServerLabels | null): void {
+    this.serverLabels = labels;
+    for (const { label, feature } of this.stations.values())
+      resetLabelText(label, feature.properties.name, labels ? serverFont(labels.info) : LABEL_FONT);
+    if (!this.moving) this.settle();
   }
 
   /** Per drawn edge, its lines left to right: only an order of exactly the edge's lines is taken. */
@@ -308,8 +340,10 @@ export class MetroLayers {
   private drawStation(layer: SVGGElement, feature: StationFeature, frame: Frame, lines: Map<string, MetroLine>): void {
     const { id, name, lines: lineIds } = feature.properties;
     const interchange = lineIds.length > 1;
-    const element = svg('circle', { class: interchange ? 'station interchange' : 'station', 'data-id': id });
+    const element = svg('g', { class: interchange ? 'station interchange' : 'station', 'data-id': id });
     if (!interchange) element.style.stroke = lineColor(lines.get(lineIds[0] ?? ''));
+    const symbol = svg('rect', { class: 'station-symbol' });
+    element.append(symbol);
     layer.append(element);
     const point = frame.project(feature.geometry.coordinates);
     const anchor = this.map.anchor(element, point);
@@ -320,7 +354,7 @@ export class MetroLayers {
     this.labelLayer.append(text);
     const label = { anchor: this.map.anchor(text, point), marker: anchor, text, width: labelWidth(name), priority: labelPriority(feature) };
     this.labels.push(label);
-    this.stations.set(id, { feature, element, anchor, label });
+    this.stations.set(id, { feature, element, anchor, symbol, label });
   }
 
   private drawPoi(feature: PoiFeature, frame: Frame): void {
@@ -332,15 +366,33 @@ export class MetroLayers {
     this.pois.set(feature.properties.id, { feature, element, anchor: this.map.anchor(element, frame.project(feature.geometry.coordinates)) });
   }
 
+  /**
+   * Each station's symbol: a circle, or where lines run side by side through it a capsule across
+   * the bundle. With the server's names, symbols grow with the zoom as it assumed (a share of
+   * the mean edge on screen, within bounds); on the geographic map they shrink where stations
+   * crowd.
+   */
   private sizeMarkers(): void {
     const gap = this.typicalGap * this.map.scale;
     const scale = Math.max(MIN_MARKER_SCALE, Math.min(1, gap / FULL_SIZE_GAP_PX));
-    if (Math.abs(scale - this.markerScale) < 0.02) return;
-    this.markerScale = scale;
     const growth = window.matchMedia('(pointer: coarse)').matches ? TOUCH_GROWTH : 1;
-    for (const { feature, element } of this.stations.values()) {
-      const radius = feature.properties.lines.length > 1 ? INTERCHANGE_RADIUS : STATION_RADIUS;
-      element.setAttribute('r', (radius * scale * growth).toFixed(2));
+    const server = this.serverLabels?.info;
+    const meanEdgePx = server ? server.mean_edge_m * this.serverLabels!.framePerMetre * this.map.scale : 0;
+    const serverRadius = server ? Math.min(server.symbol.max_px, Math.max(server.symbol.min_px, server.symbol.share * meanEdgePx)) : 0;
+    const bundles = this.bundlesAtStations();
+    for (const [id, { feature, symbol }] of this.stations) {
+      const interchange = feature.properties.lines.length > 1;
+      const radius = server ? serverRadius : (interchange ? INTERCHANGE_RADIUS : STATION_RADIUS) * scale * growth;
+      const bundle = bundles.get(id);
+      const lanes = bundle ? bundle.lines - 1 : 0;
+      const length = 2 * radius + lanes * LINE_SPACING_PX;
+      symbol.setAttribute('x', (-length / 2).toFixed(2));
+      symbol.setAttribute('y', (-radius).toFixed(2));
+      symbol.setAttribute('width', length.toFixed(2));
+      symbol.setAttribute('height', (2 * radius).toFixed(2));
+      symbol.setAttribute('rx', radius.toFixed(2));
+      // Across the bundle: its long side at right angles to the lines.
+      symbol.setAttribute('transform', bundle && lanes > 0 ? `rotate(${(bundle.angle + 90).toFixed(1)})` : '');
     }
     // Pins shrink less: they must stay recognisable as pins.
     const pinScale = `scale(${Math.max(MIN_PIN_SCALE, scale * growth).toFixed(2)})`;
@@ -388,12 +440,104 @@ export class MetroLayers {
     svgElement.addEventListener('pointerdown', () => this.tooltip.hide(), options);
   }
 
+  /** Per station: the widest bundle through it, and the direction its lines run (degrees, screen). */
+  private bundlesAtStations(): Map<string, { lines: number; angle: number }> {
+    const out = new Map<string, { lines: number; angle: number }>();
+    this.edges.forEach((edge, i) => {
+      const points = this.current.edges[i] ?? [];
+      const lines = (this.orders[i] ?? edge.lines).length;
+      if (points.length < 2 || lines < 2) return;
+      for (const [id, from, to] of [
+        [edge.from, points[0]!, points[1]!],
+        [edge.to, points[points.length - 1]!, points[points.length - 2]!],
+      ] as const) {
+        if ((out.get(id)?.lines ?? 0) >= lines) continue;
+        out.set(id, { lines, angle: (Math.atan2(to[1] - from[1], to[0] - from[0]) * 180) / Math.PI });
+      }
+    });
+    return out;
+  }
+
   private settle(): void {
     this.tooltip.hide();
     this.sizeMarkers();
+    if (this.serverLabels) {
+      this.showServerLabels(this.serverLabels);
+      return;
+    }
     const markers = [...this.stations.values()].map((station) => station.anchor);
     placeLabels(this.map, this.labels, markers, this.obstacles());
   }
+
+  /**
+   * The server's names for the largest zoom it placed them for at or below the map's: none of
+   * them overlap there, nor (boxes keeping their size while positions spread) at any larger
+   * zoom. Below the smallest, no names.
+   */
+  private showServerLabels(server: ServerLabels): void {
+    const pxPerMetre = this.map.scale * server.framePerMetre;
+    let chosen = -1;
+    server.info.scales.forEach((scale, i) => {
+      if (scale.px_per_m <= pxPerMetre * (1 + 1e-9)) chosen = i;
+    });
+    const byStation = chosen >= 0 ? server.byScale[chosen]! : new Map<string, LayoutLabel>();
+    const font = serverFont(server.info);
+    for (const [id, { label, feature }] of this.stations) {
+      const placed = byStation.get(id);
+      if (!placed) {
+        label.text.setAttribute('visibility', 'hidden');
+        continue;
+      }
+      const [, x0, , x1, , tx, ty, anchor, split] = placed;
+      setLabelText(label, feature.properties.name, split, x1 - x0, server.info.font.line_px, font);
+      label.text.setAttribute('text-anchor', anchor === 's' ? 'start' : anchor === 'm' ? 'middle' : 'end');
+      label.anchor.dx = tx;
+      label.anchor.dy = ty;
+      label.text.setAttribute('visibility', 'visible');
+    }
+    this.map.requestRender();
+  }
+}
+
+/** Back to one line of the name in `font`, unstretched. */
+function resetLabelText(label: Label, name: string, font: string): void {
+  label.text.replaceChildren(name);
+  label.text.style.font = font;
+  label.text.removeAttribute('textLength');
+  label.text.removeAttribute('lengthAdjust');
+  delete label.text.dataset.split;
+}
+
+/**
+ * The name on one line or two (split at byte `split` of its UTF-8), each line stretched to the
+ * width the server measured, so a fallback font takes the same room.
+ */
+function setLabelText(label: Label, name: string, split: number, width: number, linePx: number, font: string): void {
+  const key = String(split);
+  if (label.text.dataset.split !== key) {
+    label.text.dataset.split = key;
+    label.text.style.font = font;
+    const bytes = new TextEncoder().encode(name);
+    const parts = split > 0 ? [new TextDecoder().decode(bytes.slice(0, split)).trimEnd(), new TextDecoder().decode(bytes.slice(split))] : [name];
+    const widths = parts.map((part) => measure(part, font));
+    const stretch = width / Math.max(...widths, 1);
+    label.text.replaceChildren(
+      ...parts.map((part, i) => {
+        const tspan = svg('tspan', { x: 0, dy: i === 0 ? 0 : linePx, textLength: (widths[i]! * stretch).toFixed(1), lengthAdjust: 'spacingAndGlyphs' });
+        tspan.textContent = part;
+        return tspan;
+      }),
+    );
+  }
+}
+
+let measureCanvas: CanvasRenderingContext2D | null | undefined;
+
+function measure(text: string, font: string): number {
+  measureCanvas ??= document.createElement('canvas').getContext('2d');
+  if (!measureCanvas) return text.length * 7;
+  measureCanvas.font = font;
+  return measureCanvas.measureText(text).width;
 }
 
 /** Interchanges are named before plain stations. */

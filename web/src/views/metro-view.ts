@@ -31,11 +31,11 @@ import { ClusterLayer, type ClusterPick } from '../metro/cluster-layer';
 import { poiDetails, stationDetails, type DetailsContext } from '../metro/details';
 import { HeatLayer } from '../metro/heat-layer';
 import { LatestRequest } from '../metro/latest-request';
-import { geoGrid, layoutGeometry, Placement } from '../metro/layout-geometry';
+import { geoGrid, layoutGeometry, Placement, serverLabels } from '../metro/layout-geometry';
 import { LayoutInfo } from '../metro/layout-info';
 import { Legend } from '../metro/legend';
 import { MapOptions, type MapMode } from '../metro/map-options';
-import { MetroLayers, type MetroPick } from '../metro/metro-layers';
+import { MetroLayers, type MetroPick, type ServerLabels } from '../metro/metro-layers';
 import { carry, easeInOutCubic, geometryBounds, Morph, type Geometry, type Pt } from '../metro/morph';
 import { attributionBox, showAttribution } from '../ui/attribution';
 import { DetailsPanel } from '../ui/details-panel';
@@ -78,6 +78,8 @@ interface LayoutEntry extends LayoutAnswer {
   geoGeometry: Geometry;
   /** The POIs' warped positions in the layout frame, by id. */
   poiPositions: Map<string, XY>;
+  /** The server's station names for this layout, or null (an older server gave none). */
+  labels: ServerLabels | null;
   /** The heat map of the whole mesh (asked for once, when first shown). */
   heat?: Promise<VisualWorthRaster>;
 }
@@ -374,6 +376,7 @@ export class MetroView implements View {
           geometry,
           // The geographic drawing keeps the layout's line order (the same track, the same sides).
           geoGeometry: { ...layers.geo, grid: geoGrid(answer.layout, placement), orders: geometry.orders },
+          labels: serverLabels(answer.layout, placement),
           poiPositions: new Map(answer.layout.pois.features.map((poi) => [poi.properties.id, poi.geometry.coordinates])),
         };
       });
@@ -429,7 +432,7 @@ export class MetroView implements View {
     data.layout = 'ready';
     data.layoutSolver = entry.layout.solver.kind;
     this.info.showLayout(entry);
-    this.morphTo(entry.geometry, 'octilinear');
+    this.morphTo(entry.geometry, 'octilinear', entry.labels);
   }
 
   /**
@@ -484,7 +487,7 @@ export class MetroView implements View {
     data.layoutSolver = entry.layout.solver.kind;
     data.layoutSwaps = String(Number(data.layoutSwaps ?? 0) + 1);
     this.info.showLayout(entry);
-    this.morphTo(entry.geometry, 'octilinear');
+    this.morphTo(entry.geometry, 'octilinear', entry.labels);
   }
 
   private showGeographic(): void {
@@ -493,7 +496,7 @@ export class MetroView implements View {
     this.info.hideLayout();
     if (this.map.element.dataset.layout === 'loading') delete this.map.element.dataset.layout;
     if (!layers) return;
-    this.morphTo(this.shownLayout?.geoGeometry ?? layers.geo, 'geographic');
+    this.morphTo(this.shownLayout?.geoGeometry ?? layers.geo, 'geographic', null);
   }
 
   /**
@@ -502,9 +505,11 @@ export class MetroView implements View {
    * window stays there (carried by the nearby stations' moves). Clusters and heat map are hidden
    * meanwhile and asked for again at the end.
    */
-  private morphTo(target: Geometry, mode: MapMode): void {
+  private morphTo(target: Geometry, mode: MapMode, labels: ServerLabels | null): void {
     const layers = this.layers;
     if (!layers) return;
+    // The octilinear layout comes with the server's station names; the geographic map places its own.
+    layers.setServerLabels(labels);
     cancelAnimationFrame(this.animation);
     window.clearTimeout(this.refreshTimer);
     this.clusterRequest.cancel();

@@ -1,0 +1,422 @@
+#include "metro/station_labels.hpp"
+
+#include "metro/label_font.hpp"
+#include "metro/segment_geometry.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <numeric>
+#include <unordered_map>
+
+namespace tourmap::metro {
+
+double LabelStyle::symbol_px(double mean_edge_px) const {
+  return std::clamp(symbol_share * mean_edge_px, symbol_min_px, symbol_max_px);
+}
+
+double label_width_px(const std::string& name, const LabelStyle& style) { return label_text_em(name) * style.font_px; }
+
+namespace {
+
+struct Rect {
+  double x0, y0, x1, y1;  // layout units, y up
+};
+
+bool overlaps(const Rect& a, const Rect& b) { return a.x0 < b.x1 && b.x0 < a.x1 && a.y0 < b.y1 && b.y0 < a.y1; }
+
+double rect_point_distance(const Rect& r, XY p) {
+  const double dx = std::max({r.x0 - p.x, 0.0, p.x - r.x1}), dy = std::max({r.y0 - p.y, 0.0, p.y - r.y1});
+  return std::hypot(dx, dy);
+}
+
+// Does the segment pass through the rectangle? (Liang-Barsky clipping.)
+bool crosses(const Rect& r, XY a, XY b) {
+  double t0 = 0, t1 = 1;
+  const double dx = b.x - a.x, dy = b.y - a.y;
+  const double p[4] = {-dx, dx, -dy, dy}, q[4] = {a.x - r.x0, r.x1 - a.x, a.y - r.y0, r.y1 - a.y};
+  for (int i = 0; i < 4; ++i) {
+    if (p[i] == 0) {
+      if (q[i] < 0) return false;
+      continue;
+    }
+    const double t = q[i] / p[i];
+    if (p[i] < 0) t0 = std::max(t0, t);
+    else t1 = std::min(t1, t);
+    if (t0 > t1) return false;
+  }
+  return true;
+}
+
+// Distance between a rectangle and a segment (0 when they meet).
+double rect_segment_distance(const Rect& r, XY a, XY b) {
+  if (crosses(r, a, b)) return 0;
+  const std::array<XY, 4> c = {XY{r.x0, r.y0}, XY{r.x1, r.y0}, XY{r.x1, r.y1}, XY{r.x0, r.y1}};
+  double best = std::min(rect_point_distance(r, a), rect_point_distance(r, b));
+  for (const auto& corner : c) best = std::min(best, point_segment_distance(corner, a, b));
+  return best;
+}
+
+// A uniform grid over the layout: items by the cells their boxes cover.
+class Grid {
+ public:
+  explicit Grid(double cell) : cell_(cell > 0 ? cell : 1) {}
+  void add(const Rect& box, int item) {
+    for_cells(box, [&](std::uint64_t key) { cells_[key].push_back(item); });
+  }
+  template <typename F>
+  void near(const Rect& box, F&& f) const {
+    for_cells(box, [&](std::uint64_t key) {
+      if (auto it = cells_.find(key); it != cells_.end())
+        for (int item : it->second) f(item);
+    });
+  }
+
+ private:
+  template <typename F>
+  void for_cells(const Rect& box, F&& f) const {
+    const auto lo_x = static_cast<std::int64_t>(std::floor(box.x0 / cell_)), hi_x = static_cast<std::int64_t>(std::floor(box.x1 / cell_));
+    const auto lo_y = static_cast<std::int64_t>(std::floor(box.y0 / cell_)), hi_y = static_cast<std::int64_t>(std::floor(box.y1 / cell_));
+    for (auto x = lo_x; x <= hi_x; ++x)
+      for (auto y = lo_y; y <= hi_y; ++y) f((static_cast<std::uint64_t>(x) << 32) ^ static_cast<std::uint32_t>(y));
+  }
+  double cell_;
+  std::unordered_map<std::uint64_t, std::vector<int>> cells_;
+};
+
+struct Segment {
+  XY a, b;
+  std::size_t lines;
+};
+
+// The eight sides, counter-clockwise from east, and how much each reads worse than east; a
+// label slid off a line along its side, or on two lines, reads a little worse again.
+constexpr std::array<double, 8> kPlaceCost = {0.0, 0.3, 0.6, 0.4, 0.1, 0.45, 0.65, 0.35};
+constexpr double kSlideCost = 0.15, kTwoLineCost = 0.25;
+constexpr double kSameSideBonus = 0.5;  // the side a neighbour on the line took
+
+// A name's text: its width, and where it breaks onto two lines (0: it does not).
+struct Text {
+  double width;
+  std::size_t split;
+};
+
+// The label of text `t` on side p (slid by `slide` lanes of `lane` px off the line along that
+// side), around a symbol reaching rho px, in px from the point.
+PlacedLabel place_box(std::uint32_t node, int p, int slide, const Text& t, double rho, double lane, const LabelStyle& s) {
+  const double w = t.width, h = s.height_px + (t.split ? s.line_px : 0), d = rho * std::sqrt(0.5);
+  PlacedLabel l{node, p, slide, 0, 0, 0, 0, 0, 0, 's', t.split};
+  // Slid boxes clear the line along their side: beside it rather than centred on it.
+  const double beside = lane + (slide < 0 ? h : 0);
+  switch (p) {
+    case 0: l.x0 = rho, l.y0 = slide == 0 ? -h / 2 : slide < 0 ? -beside : lane; break;
+    case 1: l.x0 = d, l.y0 = -d - h; break;
+    case 2: l.x0 = slide == 0 ? -w / 2 : slide < 0 ? -lane - w : lane, l.y0 = -rho - h; break;
+    case 3: l.x0 = -d - w, l.y0 = -d - h; break;
+    case 4: l.x0 = -rho - w, l.y0 = slide == 0 ? -h / 2 : slide < 0 ? -beside : lane; break;
+    case 5: l.x0 = -d - w, l.y0 = d; break;
+    case 6: l.x0 = slide == 0 ? -w / 2 : slide < 0 ? -lane - w : lane, l.y0 = rho; break;
+    default: l.x0 = d, l.y0 = d; break;
+  }
+  l.anchor = (p == 2 || p == 6) ? (slide == 0 ? 'm' : slide < 0 ? 'e' : 's') : (p >= 3 && p <= 5) ? 'e' : 's';
+  l.x1 = l.x0 + w;
+  l.y1 = l.y0 + h;
+  l.text_x = l.anchor == 's' ? l.x0 : l.anchor == 'e' ? l.x1 : (l.x0 + l.x1) / 2;
+  // Each line centred in its share of the box: the baseline 0.35 em below the share's middle
+  // (DejaVu's capitals are 0.73 em tall).
+  l.text_y = l.y0 + s.height_px / 2 + 0.35 * s.font_px;
+  return l;
+}
+
+// Where a name of several words breaks most evenly onto two lines (0: one word).
+Text text_of(const std::string& name, const LabelStyle& style, bool two_lines) {
+  const double whole = label_width_px(name, style);
+  if (!two_lines) return {whole, 0};
+  Text best{whole, 0};
+  for (std::size_t i = 1; i + 1 < name.size(); ++i) {
+    if (name[i] != ' ') continue;
+    const double w = std::max(label_width_px(name.substr(0, i), style), label_width_px(name.substr(i + 1), style));
+    if (w < best.width) best = {w, i + 1};
+  }
+  return best;
+}
+
+class Placer {
+ public:
+  Placer(const LayoutGraph& g, const Layout& L, const StationLabelInput& in, const LabelStyle& style)
+      : g_(g), L_(L), in_(in), style_(style), neighbours_(g.pos.size()), degree_(g.pos.size(), 0) {
+    double total = 0;
+    for (std::uint32_t e = 0; e < g.edges.size(); ++e) {
+      const auto& path = L.paths[e];
+      const std::size_t n = e < in.lines.size() ? std::max<std::size_t>(1, in.lines[e]) : 1;
+      for (std::size_t i = 1; i < path.size(); ++i) {
+        segments_.push_back({path[i - 1], path[i], n});
+        total += std::hypot(path[i].x - path[i - 1].x, path[i].y - path[i - 1].y);
+      }
+      auto [u, v] = g.edges[e];
+      neighbours_[u].push_back(v);
+      neighbours_[v].push_back(u);
+      ++degree_[u], ++degree_[v];
+      for (auto x : {u, v}) bundle_[x] = std::max(bundle_[x], n);
+    }
+    mean_ = g.edges.empty() ? 1.0 : total / g.edges.size();
+    if (!(mean_ > 0)) mean_ = 1;
+    grid_cell_ = mean_;
+    Grid segment_grid(grid_cell_);
+    for (std::size_t i = 0; i < segments_.size(); ++i) {
+      const auto& s = segments_[i];
+      segment_grid.add({std::min(s.a.x, s.b.x), std::min(s.a.y, s.b.y), std::max(s.a.x, s.b.x), std::max(s.a.y, s.b.y)},
+                       static_cast<int>(i));
+    }
+    segment_grid_ = std::move(segment_grid);
+    Grid symbol_grid(grid_cell_);
+    for (std::uint32_t v = 0; v < g.pos.size(); ++v) symbol_grid.add({L.pos[v].x, L.pos[v].y, L.pos[v].x, L.pos[v].y}, static_cast<int>(v));
+    symbol_grid_ = std::move(symbol_grid);
+    for (const auto& [v, n] : bundle_) max_lines_ = std::max(max_lines_, n);
+    one_line_.resize(g.pos.size(), Text{0, 0});
+    two_lines_.resize(g.pos.size(), Text{0, 0});
+    // Interchanges and termini first, then by the caller's priority.
+    for (std::uint32_t v = 0; v < g.pos.size(); ++v)
+      if (v < in.names.size() && !in.names[v].empty()) {
+        order_.push_back(v);
+        one_line_[v] = text_of(in.names[v], style, false);
+        two_lines_[v] = text_of(in.names[v], style, true);
+      }
+    std::stable_sort(order_.begin(), order_.end(), [&](auto a, auto b) {
+      const auto key = [&](std::uint32_t v) {
+        const bool first = bundle_.count(v) && (bundle_.at(v) > 1 || degree_[v] != 2);
+        return std::pair{first ? 1 : 0, v < in.priority.size() ? in.priority[v] : 0.0};
+      };
+      return key(a) > key(b);
+    });
+  }
+
+  double mean_edge() const { return mean_; }
+
+  LabelScale place(double mean_edge_px, double symbol_px) {
+    LabelScale out;
+    out.mean_edge_px = mean_edge_px;
+    out.px_per_unit = mean_edge_px / mean_;
+    out.symbol_px = symbol_px;
+    scale_ = out.px_per_unit;
+    symbol_px_ = symbol_px;
+    labels_.clear();
+    candidate_.clear();
+    label_rects_.clear();
+    placed_.assign(g_.pos.size(), -1);
+    label_grid_ = Grid(grid_cell_);
+    std::vector<std::uint32_t> left_out;
+    for (auto v : order_)
+      if (!place_best(v)) left_out.push_back(v);
+    // Repair: a station left out may take a place held by one neighbour's label that can move.
+    std::size_t unlabelled = 0;
+    for (auto v : left_out)
+      if (!repair(v)) ++unlabelled;
+    for (const auto& l : labels_)
+      if (l.node != kRemoved) out.labels.push_back(l);
+    out.unlabelled = unlabelled;
+    return out;
+  }
+
+ private:
+  static constexpr std::uint32_t kRemoved = std::numeric_limits<std::uint32_t>::max();
+
+  // How far v's symbol reaches, px: its radius, and half the widest bundle through it.
+  double reach_px(std::uint32_t v) const {
+    const auto it = bundle_.find(v);
+    const std::size_t n = it == bundle_.end() ? 1 : it->second;
+    return symbol_px_ + (static_cast<double>(n) - 1) / 2 * style_.line_spacing_px;
+  }
+
+  Rect rect_of(std::uint32_t v, const PlacedLabel& l) const {
+    const XY p = L_.pos[v];
+    return {p.x + l.x0 / scale_, p.y - l.y1 / scale_, p.x + l.x1 / scale_, p.y - l.y0 / scale_};
+  }
+
+  // Candidate c: 0..15 the place (the 8 sides, then E, W, N, S slid to one side and to the
+  // other), plus 16 for two lines of text.
+  static constexpr int kCandidates = 32;
+  PlacedLabel candidate(std::uint32_t v, int c) const {
+    const int place = c % 16;
+    const int side = candidate_side(c);
+    const int slide = place < 8 ? 0 : (place % 2 ? 1 : -1);
+    const Text& t = c >= 16 ? two_lines_[v] : one_line_[v];
+    // The lane a slid label keeps clear of: half the widest bundle through v, and clearance.
+    const auto it = bundle_.find(v);
+    const double n = it == bundle_.end() ? 1.0 : static_cast<double>(it->second);
+    const double lane = n * style_.line_spacing_px / 2 + style_.clearance_px + 1;
+    return place_box(v, side, slide, t, reach_px(v) + style_.gap_px, lane, style_);
+  }
+  bool has_two_lines(std::uint32_t v) const { return two_lines_[v].split != 0; }
+  double candidate_cost(std::uint32_t v, int c) const {
+    const auto l = candidate(v, c);
+    return cost(v, c) + (l.slide != 0 ? kSlideCost : 0) + (c >= 16 ? kTwoLineCost : 0);
+  }
+
+  // Clear of lines and symbols (labels are checked separately).
+  bool clear_of_map(const Rect& r) const {
+    const double widest = (static_cast<double>(max_lines()) * style_.line_spacing_px / 2 + style_.clearance_px) / scale_;
+    const Rect query{r.x0 - widest, r.y0 - widest, r.x1 + widest, r.y1 + widest};
+    bool clear = true;
+    segment_grid_.near(query, [&](int i) {
+      if (!clear) return;
+      const auto& s = segments_[static_cast<std::size_t>(i)];
+      const double half = (static_cast<double>(s.lines) * style_.line_spacing_px / 2 + style_.clearance_px) / scale_;
+      if (rect_segment_distance(r, s.a, s.b) < half) clear = false;
+    });
+    if (!clear) return false;
+    const double reach = (symbol_px_ + static_cast<double>(max_lines()) * style_.line_spacing_px + style_.clearance_px) / scale_;
+    symbol_grid_.near({r.x0 - reach, r.y0 - reach, r.x1 + reach, r.y1 + reach}, [&](int i) {
+      if (!clear) return;
+      const auto v = static_cast<std::uint32_t>(i);
+      if (rect_point_distance(r, L_.pos[v]) < (reach_px(v) + style_.clearance_px) / scale_) clear = false;
+    });
+    return clear;
+  }
+
+  std::size_t max_lines() const { return max_lines_; }
+
+  // Labels whose boxes meet r (ids into labels_).
+  std::vector<int> label_conflicts(const Rect& r) const {
+    std::vector<int> out;
+    label_grid_.near(r, [&](int i) {
+      if (labels_[static_cast<std::size_t>(i)].node != kRemoved && overlaps(r, label_rects_[static_cast<std::size_t>(i)]) &&
+          std::find(out.begin(), out.end(), i) == out.end())
+        out.push_back(i);
+    });
+    return out;
+  }
+
+  // The place's own cost, less a bonus when a neighbour on the line is labelled the same way
+  // (the same candidate: the same side and slide), half of it for the same side alone.
+  double cost(std::uint32_t v, int c) const {
+    const int p = candidate_side(c);
+    double cost = kPlaceCost[static_cast<std::size_t>(p)];
+    double bonus = 0;
+    for (auto w : neighbours_[v]) {
+      if (placed_[w] < 0) continue;
+      const int other = candidate_[static_cast<std::size_t>(placed_[w])];
+      if (other % 16 == c % 16) bonus = std::max(bonus, kSameSideBonus);
+      else if (candidate_side(other) == p) bonus = std::max(bonus, kSameSideBonus / 2);
+    }
+    return cost - bonus;
+  }
+  static int candidate_side(int c) {
+    const int place = c % 16;
+    return place < 8 ? place : 2 * ((place - 8) / 2);
+  }
+
+  // v's candidates, cheapest first.
+  std::vector<int> ranked_candidates(std::uint32_t v) const {
+    std::vector<std::pair<double, int>> ranked;
+    for (int c = 0; c < kCandidates; ++c) {
+      if (c >= 16 && !has_two_lines(v)) break;
+      ranked.push_back({candidate_cost(v, c), c});
+    }
+    std::sort(ranked.begin(), ranked.end());
+    std::vector<int> out;
+    for (auto [cost, c] : ranked) out.push_back(c);
+    return out;
+  }
+
+  bool free(std::uint32_t v, int c, int except_label = -1) const {
+    const Rect r = rect_of(v, candidate(v, c));
+    auto conflicts = label_conflicts(r);
+    conflicts.erase(std::remove(conflicts.begin(), conflicts.end(), except_label), conflicts.end());
+    return conflicts.empty() && clear_of_map(r);
+  }
+
+  // The cheapest free candidate of v, or -1.
+  int best_free(std::uint32_t v) const {
+    for (int c : ranked_candidates(v))
+      if (free(v, c)) return c;
+    return -1;
+  }
+
+  void put(std::uint32_t v, int c) {
+    const auto l = candidate(v, c);
+    const auto id = static_cast<int>(labels_.size());
+    labels_.push_back(l);
+    candidate_.push_back(c);
+    label_rects_.push_back(rect_of(v, l));
+    label_grid_.add(label_rects_.back(), id);
+    placed_[v] = id;
+  }
+
+  void remove(int id) {
+    placed_[labels_[static_cast<std::size_t>(id)].node] = -1;
+    labels_[static_cast<std::size_t>(id)].node = kRemoved;
+  }
+
+  bool place_best(std::uint32_t v) {
+    const int c = best_free(v);
+    if (c < 0) return false;
+    put(v, c);
+    return true;
+  }
+
+  // v takes a place whose only conflict is one label that has another free place.
+  bool repair(std::uint32_t v) {
+    for (int p = 0; p < kCandidates; ++p) {
+      if (p >= 16 && !has_two_lines(v)) break;
+      const Rect r = rect_of(v, candidate(v, p));
+      if (!clear_of_map(r)) continue;
+      const auto conflicts = label_conflicts(r);
+      if (conflicts.size() != 1) continue;
+      const int other = conflicts.front();
+      const auto w = labels_[static_cast<std::size_t>(other)].node;
+      const int old_place = candidate_[static_cast<std::size_t>(other)];
+      remove(other);
+      put(v, p);
+      if (const int c = best_free(w); c >= 0) {
+        put(w, c);
+        return true;
+      }
+      // Undo: v goes again, w back where it was.
+      remove(placed_[v]);
+      put(w, old_place);
+    }
+    return false;
+  }
+
+  const LayoutGraph& g_;
+  const Layout& L_;
+  const StationLabelInput& in_;
+  LabelStyle style_;
+  std::vector<Segment> segments_;
+  std::vector<std::vector<std::uint32_t>> neighbours_;
+  std::vector<std::size_t> degree_;
+  std::unordered_map<std::uint32_t, std::size_t> bundle_;  // node -> widest bundle through it
+  std::vector<std::uint32_t> order_;
+  std::vector<Text> one_line_, two_lines_;  // per node: its name on one line, and on two
+  std::size_t max_lines_ = 1;
+  double mean_ = 1, grid_cell_ = 1;
+  Grid segment_grid_{1}, symbol_grid_{1}, label_grid_{1};
+  // Per scale:
+  double scale_ = 1, symbol_px_ = 0;
+  std::vector<PlacedLabel> labels_;
+  std::vector<int> candidate_;  // per label: the candidate it is
+  std::vector<Rect> label_rects_;
+  std::vector<int> placed_;
+};
+
+}  // namespace
+
+std::vector<LabelScale> place_station_labels(const LayoutGraph& g, const Layout& layout, const StationLabelInput& in,
+                                             const std::vector<double>& mean_edges_px, const LabelStyle& style) {
+  std::vector<LabelScale> out;
+  if (layout.pos.size() != g.pos.size() || layout.paths.size() != g.edges.size()) return out;
+  Placer placer(g, layout, in, style);
+  auto scales = mean_edges_px;
+  std::sort(scales.begin(), scales.end());
+  for (std::size_t k = 0; k < scales.size(); ++k) {
+    // Kept clear of the symbols as big as they get before the next scale takes over.
+    const double next = k + 1 < scales.size() ? scales[k + 1] : std::numeric_limits<double>::infinity();
+    out.push_back(placer.place(scales[k], style.symbol_px(next)));
+  }
+  return out;
+}
+
+}  // namespace tourmap::metro

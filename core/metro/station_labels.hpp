@@ -1,0 +1,76 @@
+#pragma once
+// Station names on an octilinear metro map (issue 14), one placement for the client and the
+// export. A label is a box of the name's width (metro/label_font.hpp) in one of sixteen places
+// around its station's symbol: east, north-east, ..., south-east, and beside a line leaving
+// east, west, north or south (slid off it to either side), on one line of text or, for a name
+// of several words, on two (split where the halves are most even). Labels keep clear of each
+// other, of every line (a bundle of n lines is n * line spacing wide), and of every station's
+// symbol. Interchanges and termini are named first, then by priority; a label takes the free
+// place that reads best (east first, then west, the diagonals, north and south) and prefers
+// the side its neighbour on the line took. A second pass names a station left out by moving
+// one neighbour's label to another free place.
+//
+// Label sizes are pixels and the map zooms, so a placement is made per scale (px per layout
+// unit). One made at a scale stays clear at every larger one (positions spread, boxes keep
+// their size), and symbols grow with the zoom up to a cap, so each scale's placement is made
+// with the symbols of the next scale up: a client shows the placement of the largest scale at
+// or below its zoom (cartographic label placement: Christensen, Marks, Shieber, ACM TOG 1995,
+// greedy with local repair; the conflict-graph formulation in DESIGN.md's references).
+
+#include "metro/label_font.hpp"
+#include "metro/layout_graph.hpp"
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace tourmap::metro {
+
+struct LabelStyle {
+  double font_px = 12;           // the name's size
+  double height_px = 14;         // its box's height (one line; each more adds line_px)
+  double line_px = 13;           // from one line of a name's text to the next
+  double gap_px = 3;             // between a symbol and its label
+  double line_spacing_px = 4;    // centre to centre of parallel lines (the client's)
+  double line_width_px = 3.5;
+  double clearance_px = 1;       // kept free around lines and symbols
+  // A station symbol's radius grows with the zoom: this share of the mean edge on screen, within
+  // [min, max] px. A symbol on a bundle of n lines reaches (n - 1) / 2 line spacings further.
+  double symbol_share = 0.1, symbol_min_px = 3, symbol_max_px = 8;
+  double symbol_px(double mean_edge_px) const;
+};
+
+// One placed label, in pixels relative to its station's point (x right, y down).
+struct PlacedLabel {
+  std::uint32_t node;
+  int position;                 // 0..7: the side, counter-clockwise from east (2 north, 4 west)
+  int slide;                    // -1, 0, 1: slid off a line leaving that side (0: centred on the side)
+  double x0, y0, x1, y1;        // the box
+  double text_x, text_y;        // the text's anchor point (on the first line's baseline)
+  char anchor;                  // 's' start, 'm' middle, 'e' end of the text at text_x
+  std::size_t split = 0;        // two lines: the byte where the second begins (0: one line)
+};
+
+struct LabelScale {
+  double px_per_unit = 0;       // the scale: pixels per layout unit
+  double mean_edge_px = 0;      // the mean edge at that scale
+  double symbol_px = 0;         // the symbols' radius the placement kept clear of
+  std::vector<PlacedLabel> labels;
+  std::size_t unlabelled = 0;   // named stations without a label at this scale
+};
+
+struct StationLabelInput {
+  std::vector<std::string> names;     // per node; empty: not a station (no label)
+  std::vector<double> priority;       // per node: higher is named first
+  std::vector<std::size_t> lines;     // per edge: how many lines run on it (the bundle's width)
+};
+
+// Placements for each scale in `mean_edges_px` (the mean edge on screen), smallest first.
+std::vector<LabelScale> place_station_labels(const LayoutGraph& g, const Layout& layout, const StationLabelInput& in,
+                                             const std::vector<double>& mean_edges_px, const LabelStyle& style = {});
+
+// The width of a name in the labels' font at `style.font_px`.
+double label_width_px(const std::string& name, const LabelStyle& style);
+
+}  // namespace tourmap::metro

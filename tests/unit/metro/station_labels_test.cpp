@@ -1,0 +1,130 @@
+#include "metro/station_labels.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace tourmap::metro {
+namespace {
+
+// A straight horizontal line of `n` stations 10 units apart.
+struct Line {
+  LayoutGraph g;
+  Layout L;
+  StationLabelInput in;
+};
+
+Line line_of(int n, const std::string& prefix = "Station ") {
+  Line l;
+  for (int i = 0; i < n; ++i) {
+    XY p{10.0 * i, 0};
+    l.g.pos.push_back(p);
+    l.L.pos.push_back(p);
+    l.in.names.push_back(prefix + std::to_string(i));
+    l.in.priority.push_back(0);
+    if (i > 0) {
+      l.g.edges.push_back({static_cast<std::uint32_t>(i - 1), static_cast<std::uint32_t>(i)});
+      l.g.edge_lines.push_back({0});
+      l.g.min_length.push_back(10);
+      l.L.paths.push_back({l.L.pos[i - 1], p});
+      l.in.lines.push_back(1);
+    }
+  }
+  return l;
+}
+
+struct Box {
+  double x0, y0, x1, y1;
+};
+
+// A label's box in layout units (y up) at its scale.
+Box layout_box(const Layout& L, const LabelScale& s, const PlacedLabel& l) {
+  const XY p = L.pos[l.node];
+  return {p.x + l.x0 / s.px_per_unit, p.y - l.y1 / s.px_per_unit, p.x + l.x1 / s.px_per_unit, p.y - l.y0 / s.px_per_unit};
+}
+
+bool overlap(const Box& a, const Box& b) { return a.x0 < b.x1 && b.x0 < a.x1 && a.y0 < b.y1 && b.y0 < a.y1; }
+
+TEST(StationLabels, RoomyLineIsFullyNamedAndNothingOverlaps) {
+  auto l = line_of(6);
+  auto scales = place_station_labels(l.g, l.L, l.in, {15, 60, 200});
+  ASSERT_EQ(scales.size(), 3u);
+  // 200 px per edge: every name fits, on one side of the line, none on it.
+  EXPECT_EQ(scales[2].labels.size(), 6u);
+  EXPECT_EQ(scales[2].unlabelled, 0u);
+  for (const auto& s : scales) {
+    for (std::size_t i = 0; i < s.labels.size(); ++i) {
+      const auto a = layout_box(l.L, s, s.labels[i]);
+      // Clear of the line: x 0..50 at y = 0, half a line (2 px) plus 1 px clearance wide.
+      const double half = 3 / s.px_per_unit;
+      EXPECT_FALSE(overlap(a, {0, -half, 50, half})) << s.mean_edge_px << " " << l.in.names[s.labels[i].node];
+      for (std::size_t j = i + 1; j < s.labels.size(); ++j) EXPECT_FALSE(overlap(a, layout_box(l.L, s, s.labels[j])));
+    }
+    EXPECT_EQ(s.labels.size() + s.unlabelled, 6u);
+  }
+  // More room, more names.
+  EXPECT_LE(scales[0].labels.size(), scales[1].labels.size());
+  EXPECT_LE(scales[1].labels.size(), scales[2].labels.size());
+}
+
+TEST(StationLabels, TheLineKeepsOneSide) {
+  auto l = line_of(5);
+  auto scales = place_station_labels(l.g, l.L, l.in, {300});
+  ASSERT_EQ(scales[0].labels.size(), 5u);
+  // The stations between the termini are named on one side of the line.
+  int above = 0, below = 0;
+  for (const auto& label : scales[0].labels) {
+    if (label.node == 0 || label.node == 4) continue;
+    above += label.y1 <= 0;
+    below += label.y0 >= 0;
+  }
+  EXPECT_TRUE((above == 3 && below == 0) || (above == 0 && below == 3)) << above << " " << below;
+}
+
+TEST(StationLabels, LongNamesBreakOntoTwoLines) {
+  // A station on a vertical line with two more vertical lines 13 units to either side: at 10 px
+  // per unit its name fits between them only on two lines.
+  Line l;
+  const XY pts[] = {{0, 0}, {0, 10}, {0, -10}, {13, 20}, {13, -20}, {-13, 20}, {-13, -20}};
+  for (XY p : pts) {
+    l.g.pos.push_back(p);
+    l.L.pos.push_back(p);
+    l.in.names.push_back("");
+    l.in.priority.push_back(0);
+  }
+  l.in.names[0] = "A rather long name for the station";
+  for (auto [a, b] : {std::pair{0u, 1u}, std::pair{0u, 2u}, std::pair{3u, 4u}, std::pair{5u, 6u}}) {
+    l.g.edges.push_back({a, b});
+    l.g.edge_lines.push_back({0});
+    l.g.min_length.push_back(10);
+    l.L.paths.push_back({l.L.pos[a], l.L.pos[b]});
+    l.in.lines.push_back(1);
+  }
+  // The mean edge is 25 units: 250 px is 10 px per unit.
+  auto scales = place_station_labels(l.g, l.L, l.in, {250});
+  ASSERT_EQ(scales[0].labels.size(), 1u);
+  const auto& label = scales[0].labels[0];
+  ASSERT_GT(label.split, 0u);
+  EXPECT_EQ(l.in.names[0][label.split - 1], ' ');
+  EXPECT_LT(label.x1 - label.x0, 130);
+}
+
+TEST(StationLabels, WidthsComeFromTheFont) {
+  LabelStyle style;
+  // DejaVu Sans Condensed Bold: "W" is 0.993 em, "i" 0.308 em.
+  EXPECT_NEAR(label_width_px("W", style), 0.993 * 12, 1e-9);
+  EXPECT_NEAR(label_width_px("Wi", style), (0.993 + 0.308) * 12, 1e-9);
+  // Accented capitals are in the table; other scripts get an average width.
+  EXPECT_GT(label_width_px("Ä", style), 0.5 * 12);
+  EXPECT_NEAR(label_width_px("东", style), 12, 1e-9);
+}
+
+TEST(StationLabels, SymbolsGrowWithTheZoomWithinBounds) {
+  LabelStyle style;
+  EXPECT_DOUBLE_EQ(style.symbol_px(10), style.symbol_min_px);
+  EXPECT_DOUBLE_EQ(style.symbol_px(60), 6);
+  EXPECT_DOUBLE_EQ(style.symbol_px(1000), style.symbol_max_px);
+}
+
+}  // namespace
+}  // namespace tourmap::metro
