@@ -14,6 +14,7 @@
 //
 //   build/bench/metro_bench [--data-dir DIR] [--city ID] [--mip] [--time-limit S]
 //                           [--write-layouts DIR]   (or TOURMAP_BENCH_LAYOUTS=DIR) [--variants]
+//                           [--unlabelled PX]  (also list the stations without a name at that zoom)
 // --variants: instead, networks the layout has not seen (bench/metro_variants.hpp: every
 // manifest network jittered, without its longest line, and with flaws), default request: do
 // the invariants hold (0 added crossings and order violations, octilinear, every edge kept,
@@ -263,18 +264,20 @@ int main(int argc, char** argv) {
   std::string only_city, layouts_dir;
   if (const char* env = std::getenv("TOURMAP_BENCH_LAYOUTS")) layouts_dir = env;
   bool with_mip = false, variants = false;
+  double unlabelled_at = 0;  // --unlabelled PX: list the stations without a name at that zoom
   double time_limit_s = 10.0;
   for (int i = 1; i < argc; ++i) {
     std::string arg = argv[i];
     bool has_value = i + 1 < argc;
     if (arg == "--mip") with_mip = true;
     else if (arg == "--variants") variants = true;
+    else if (arg == "--unlabelled" && has_value) unlabelled_at = std::stod(argv[++i]);
     else if (arg == "--data-dir" && has_value) data_dir = argv[++i];
     else if (arg == "--city" && has_value) only_city = argv[++i];
     else if (arg == "--time-limit" && has_value) time_limit_s = std::stod(argv[++i]);
     else if (arg == "--write-layouts" && has_value) layouts_dir = argv[++i];
     else {
-      std::fprintf(stderr, "usage: metro_bench [--data-dir DIR] [--city ID] [--mip] [--time-limit S] [--write-layouts DIR] [--variants]\n");
+      std::fprintf(stderr, "usage: metro_bench [--data-dir DIR] [--city ID] [--mip] [--time-limit S] [--write-layouts DIR] [--variants] [--unlabelled PX]\n");
       return 2;
     }
   }
@@ -341,13 +344,14 @@ int main(int argc, char** argv) {
       stage_rows.push_back(stage_row(ref.network, req.name, r));
       order_rows.push_back(order_row(ref.network, req.name, r));
       label_rows.push_back(labels_row(ref.network, req.name, r, in.station_count));
-      if (std::getenv("TM_LABELS")) {
+      if (unlabelled_at > 0) {
         for (std::size_t k = 0; k < r.labels.size(); ++k) {
-          if (metro::kLabelMeanEdgesPx[k] != std::atof(std::getenv("TM_LABELS"))) continue;
+          if (metro::kLabelMeanEdgesPx[k] != unlabelled_at) continue;
           std::vector<bool> has(in.names.size(), false);
           for (const auto& l : r.labels[k].labels) has[l.node] = true;
           for (std::size_t v = 0; v < in.names.size(); ++v)
-            if (!in.names[v].empty() && !has[v]) std::fprintf(stderr, "%s %s unlabelled at %.0f: %s\n", ref.network, req.name, metro::kLabelMeanEdgesPx[k], in.names[v].c_str());
+            if (!in.names[v].empty() && !has[v])
+              std::printf("%s %s: unnamed at %.0f px: %s\n", ref.network, req.name, metro::kLabelMeanEdgesPx[k], in.names[v].c_str());
         }
       }
       if (!layouts_dir.empty()) write_layout(layouts_dir + "/" + ref.network + "-" + req.name + ".json", city.net, drawn);
