@@ -3,6 +3,7 @@ import { LABEL_FONT, labelWidth, type Box } from '../map/labels';
 import { svg } from '../map/svg';
 import type { Anchor, SvgMap } from '../map/svg-map';
 import { MapTooltip } from '../map/tooltip';
+import type { MapObstacles, MapSegment } from './metro-layers';
 import type { Pt } from './morph';
 
 export interface ClusterPick {
@@ -35,12 +36,50 @@ function httpUrl(value: string | undefined): string | undefined {
   }
 }
 
+/**
+ * Where a marker may stand instead of on its place: its place, then rings of 8 spots, upwards
+ * first, out to where a leader line still reads as pointing at the place.
+ */
+const OFFSETS: [number, number][] = [[0, 0]];
+for (const radius of [26, 44, 64, 90, 120, 160]) {
+  for (const degrees of [270, 315, 225, 0, 180, 45, 135, 90]) {
+    const a = (degrees * Math.PI) / 180;
+    OFFSETS.push([Math.round(radius * Math.cos(a)), Math.round(radius * Math.sin(a))]);
+  }
+}
+
+/** Does the segment (with its half width) come into the box? */
+function segmentMeets(s: MapSegment, box: Box): boolean {
+  const grown = { x0: box.x0 - s.half, y0: box.y0 - s.half, x1: box.x1 + s.half, y1: box.y1 + s.half };
+  if (Math.max(s.x0, s.x1) < grown.x0 || Math.min(s.x0, s.x1) > grown.x1 || Math.max(s.y0, s.y1) < grown.y0 || Math.min(s.y0, s.y1) > grown.y1) return false;
+  // Liang-Barsky clipping against the grown box.
+  let t0 = 0;
+  let t1 = 1;
+  const dx = s.x1 - s.x0;
+  const dy = s.y1 - s.y0;
+  const p = [-dx, dx, -dy, dy];
+  const q = [s.x0 - grown.x0, grown.x1 - s.x0, s.y0 - grown.y0, grown.y1 - s.y0];
+  for (let i = 0; i < 4; i++) {
+    if (p[i] === 0) {
+      if (q[i]! < 0) return false;
+      continue;
+    }
+    const t = q[i]! / p[i]!;
+    if (p[i]! < 0) t0 = Math.max(t0, t);
+    else t1 = Math.min(t1, t);
+    if (t0 > t1) return false;
+  }
+  return true;
+}
+
 const shorten = (text: string) => (text.length > NAME_MAX ? `${text.slice(0, NAME_MAX - 1).trimEnd()}…` : text);
 
 interface Marker {
   pick: ClusterPick;
   element: SVGGElement;
   anchor: Anchor;
+  /** From the marker's stem back to its place, when it had to move off the map's features. */
+  leader?: SVGPathElement;
   /** Offsets of the marker's box from the point, in pixels. */
   box: Box;
   /** The representative's name, right of the pin or else left of it; `box` is where it is now. */
@@ -59,6 +98,8 @@ export class ClusterLayer {
   private readonly tooltip: MapTooltip;
   private readonly listeners = new AbortController();
   private readonly stopRender: () => void;
+  private readonly stopSettle: () => void;
+  private obstacles: () => MapObstacles = () => ({ boxes: [], segments: [] });
 
   constructor(
     private readonly map: SvgMap,
@@ -76,7 +117,13 @@ export class ClusterLayer {
     this.tooltip = new MapTooltip(map.element);
     this.listen();
     this.stopRender = map.onRender(() => this.hideCrowdedNames());
+    this.stopSettle = map.onSettle(() => this.arrange());
     this.clear();
+  }
+
+  /** What markers move off: station symbols, names and lines (asked at every arrangement). */
+  setObstacles(obstacles: () => MapObstacles): void {
+    this.obstacles = obstacles;
   }
 
   /**
@@ -103,7 +150,7 @@ export class ClusterLayer {
     this.layer.dataset.clusterIds = answer.clusters.map((cluster) => cluster.id).join(' ');
     this.layer.dataset.previewIds = answer.previews.map((cluster) => cluster.id).join(' ');
     this.layer.dataset.active = String(answer.active);
-    this.hideCrowdedNames();
+    this.arrange();
     this.onChange();
   }
 
@@ -121,7 +168,8 @@ export class ClusterLayer {
     if (this.layer.style.display === 'none') return [];
     const out: Box[] = [];
     for (const marker of this.markers) {
-      const [x, y] = this.map.toScreen(marker.anchor.x, marker.anchor.y);
+      const [px, py] = this.map.toScreen(marker.anchor.x, marker.anchor.y);
+      const [x, y] = [px + marker.anchor.dx, py + marker.anchor.dy];
       const shift = (box: Box): Box => ({ x0: x + box.x0, y0: y + box.y0, x1: x + box.x1, y1: y + box.y1 });
       out.push(shift(marker.box));
       if (marker.name && marker.name.text.getAttribute('visibility') !== 'hidden') out.push(shift(marker.name.box));
@@ -132,6 +180,7 @@ export class ClusterLayer {
   destroy(): void {
     this.listeners.abort();
     this.stopRender();
+    this.stopSettle();
     this.tooltip.destroy();
     this.removeMarkers();
   }
@@ -168,6 +217,43 @@ export class ClusterLayer {
     return marker;
   }
 
+  /**
+   * Moves each marker (by prominence) off station symbols, station names, lines and the
+   * markers placed before it: to the nearest free spot on rings around its place, joined to it
+   * by a leader line; where no spot is free it stays on its place. Then names the markers.
+   */
+  private arrange(): void {
+    const top = this.markers.filter((marker) => !marker.pick.preview);
+    if (top.length === 0) return;
+    const { boxes, segments } = this.obstacles();
+    const taken: Box[] = [];
+    const overlaps = (a: Box, b: Box) => a.x0 < b.x1 && b.x0 < a.x1 && a.y0 < b.y1 && b.y0 < a.y1;
+    const free = (box: Box) => !boxes.some((b) => overlaps(box, b)) && !taken.some((b) => overlaps(box, b)) && !segments.some((s) => segmentMeets(s, box));
+    // Most prominent first: it keeps its place if it can.
+    for (const marker of [...top].reverse()) {
+      const [x, y] = this.map.toScreen(marker.anchor.x, marker.anchor.y);
+      const at = (dx: number, dy: number): Box => ({ x0: x + dx + marker.box.x0, y0: y + dy + marker.box.y0, x1: x + dx + marker.box.x1, y1: y + dy + marker.box.y1 });
+      const offset = OFFSETS.find(([dx, dy]) => free(at(dx, dy))) ?? [0, 0];
+      this.setOffset(marker, offset[0], offset[1]);
+      taken.push(at(offset[0], offset[1]));
+    }
+    this.hideCrowdedNames(taken, boxes, segments);
+  }
+
+  private setOffset(marker: Marker, dx: number, dy: number): void {
+    marker.anchor.dx = dx;
+    marker.anchor.dy = dy;
+    if (dx === 0 && dy === 0) {
+      marker.leader?.remove();
+      marker.leader = undefined;
+    } else {
+      marker.leader ??= svg('path', { class: 'cluster-leader' });
+      marker.element.prepend(marker.leader);
+      marker.leader.setAttribute('d', `M${-dx} ${-dy}L0 0M${-dx} ${-dy}m-2 0a2 2 0 1 0 4 0a2 2 0 1 0 -4 0`);
+    }
+    this.map.requestRender();
+  }
+
   /** A round photo on a short stem, with the cluster's size on a badge. */
   private drawThumbnail(marker: Marker, href: string): void {
     const { element, pick } = marker;
@@ -189,7 +275,8 @@ export class ClusterLayer {
       element.replaceChildren();
       element.classList.replace('with-image', 'with-name');
       this.drawPin(marker);
-      this.hideCrowdedNames();
+      // A pin takes less room than the photo: the markers are arranged again.
+      this.arrange();
       this.onChange();
     });
     element.append(photo);
@@ -211,8 +298,11 @@ export class ClusterLayer {
       svg('path', { class: 'cluster-stem', d: `M0 0L-4 ${HEAD_Y + HEAD_RADIUS - 3}L4 ${HEAD_Y + HEAD_RADIUS - 3}Z` }),
       svg('circle', { class: 'cluster-head', cy: HEAD_Y, r: HEAD_RADIUS }),
     );
-    const count = svg('text', { class: 'cluster-count', 'text-anchor': 'middle', y: HEAD_Y, dy: 4 });
-    count.textContent = size > 1 ? String(size) : '1';
+    // A single place: a dot in the head (a count of 1 reads as a cluster of one).
+    const count =
+      size > 1
+        ? Object.assign(svg('text', { class: 'cluster-count', 'text-anchor': 'middle', y: HEAD_Y, dy: 4 }), { textContent: String(size) })
+        : svg('circle', { class: 'cluster-dot', cy: HEAD_Y, r: 3.5 });
     const name = svg('text', { class: 'cluster-name', x: HEAD_RADIUS + 4, y: HEAD_Y, dy: 4 });
     name.style.font = LABEL_FONT;
     const label = shorten(pick.cluster.representative.name);
@@ -226,24 +316,33 @@ export class ClusterLayer {
   }
 
   /**
-   * Names go right of their pin, or left, where they cover no marker and no name placed before
-   * (by prominence); a name with room on neither side is hidden.
+   * Names go right of their pin, or left, where they cover no marker, no name placed before
+   * (by prominence) and nothing in `boxes` or on `segments` (the map's features); a name with
+   * room on neither side is hidden.
    */
-  private hideCrowdedNames(): void {
+  private hideCrowdedNames(markerBoxes?: Box[], boxes: Box[] = [], segments: MapSegment[] = []): void {
     const overlaps = (a: Box, b: Box) => a.x0 < b.x1 && b.x0 < a.x1 && a.y0 < b.y1 && b.y0 < a.y1;
     const top = this.markers.filter((marker) => !marker.pick.preview);
     const placed = top.map((marker) => {
       const [x, y] = this.map.toScreen(marker.anchor.x, marker.anchor.y);
-      const shift = (box: Box): Box => ({ x0: x + box.x0, y0: y + box.y0, x1: x + box.x1, y1: y + box.y1 });
+      const [ox, oy] = [x + marker.anchor.dx, y + marker.anchor.dy];
+      const shift = (box: Box): Box => ({ x0: ox + box.x0, y0: oy + box.y0, x1: ox + box.x1, y1: oy + box.y1 });
       return { marker, box: shift(marker.box), shift };
     });
+    // Only when arranged (on settling) do names look at the map's features; while panning the
+    // sides found then stay.
+    if (!markerBoxes) return;
     const taken: Box[] = placed.map(({ box }) => box);
     for (const { marker, box, shift } of placed) {
       const name = marker.name;
       if (!name) continue;
       const side = [name.right, name.left].find((candidate) => {
         const screen = shift(candidate);
-        return !taken.some((other) => other !== box && overlaps(screen, other));
+        return (
+          !taken.some((other) => other !== box && overlaps(screen, other)) &&
+          !boxes.some((other) => overlaps(screen, other)) &&
+          !segments.some((segment) => segmentMeets(segment, screen))
+        );
       });
       name.text.setAttribute('visibility', side ? 'visible' : 'hidden');
       if (!side) continue;

@@ -3,12 +3,17 @@ import type { Frame } from '../map/projection';
 import { svg } from '../map/svg';
 import type { Placement } from './layout-geometry';
 
-/** Colour stops of the heat map: value (after a square root, to show the shoulders of peaks) -> RGBA. */
+/**
+ * Colour stops of the heat map: value (after a square root, to show the shoulders of peaks) ->
+ * RGBA. A yellow-orange-brown ramp (ColorBrewer YlOrBr) that stays visible over the light map
+ * from low values on, and darkens without turning to any line's red at the peaks.
+ */
 const RAMP: [number, [number, number, number, number]][] = [
-  [0, [255, 237, 160, 0]],
-  [0.25, [254, 178, 76, 0.35]],
-  [0.55, [240, 59, 32, 0.55]],
-  [1, [128, 0, 38, 0.72]],
+  [0, [255, 247, 188, 0]],
+  [0.15, [254, 227, 145, 0.4]],
+  [0.4, [254, 196, 79, 0.55]],
+  [0.65, [236, 112, 20, 0.62]],
+  [1, [140, 45, 4, 0.72]],
 ];
 
 /** CSS gradient of the ramp, for the legend. */

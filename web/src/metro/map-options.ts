@@ -53,6 +53,7 @@ export class MapOptions {
   private readonly lengths: HTMLSelectElement;
   private readonly solver: HTMLSelectElement;
   private readonly heat: HTMLInputElement;
+  private readonly heatGroup: HTMLElement;
   private readonly grid: HTMLInputElement;
   private readonly poiGroup: HTMLElement;
 
@@ -100,6 +101,7 @@ export class MapOptions {
       this.state.heat = this.heat.checked;
       handlers.onHeat(this.heat.checked);
     });
+    this.heatGroup = h('label', { class: 'option-inline check-inline' }, this.heat, 'Heat map');
     this.grid = h('input', { type: 'checkbox', 'data-testid': 'grid-toggle' });
     this.grid.addEventListener('change', () => {
       this.state.grid = this.grid.checked;
@@ -126,7 +128,7 @@ export class MapOptions {
       h('div', { class: 'option-inline' }, this.mode.element),
       h('label', { class: 'option-inline', for: 'layout-lengths' }, h('span', { class: 'field' }, 'Lengths'), this.lengths),
       h('label', { class: 'option-inline', for: 'layout-solver' }, h('span', { class: 'field' }, 'Solver'), this.solver),
-      h('label', { class: 'option-inline check-inline' }, this.heat, 'Heat map'),
+      this.heatGroup,
       h('label', { class: 'option-inline check-inline', title: 'The mesh that shows how the layout moved space around' }, this.grid, 'Warp grid'),
       this.poiGroup,
     );
@@ -149,8 +151,16 @@ export class MapOptions {
     this.solver.value = solver;
   }
 
-  /** The places switch only matters for a city with POIs. */
+  /**
+   * The places switch and the heat map (the visual worth of the city's POIs, eq. 5.1) only
+   * mean something for a city with POIs: elsewhere they are not offered.
+   */
   setHasPois(has: boolean): void {
     this.poiGroup.hidden = !has;
+    this.heatGroup.hidden = !has;
+    if (!has && this.heat.checked) {
+      this.heat.checked = false;
+      this.state.heat = false;
+    }
   }
 }

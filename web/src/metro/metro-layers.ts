@@ -60,6 +60,20 @@ function serverFont(info: LayoutLabels): string {
   return `${info.font.weight} ${info.font.size_px}px "${info.font.family}", "DejaVu Sans", "Arial Narrow", sans-serif`;
 }
 
+/** A line's piece on screen, with half its drawn width (px). */
+export interface MapSegment {
+  x0: number;
+  y0: number;
+  x1: number;
+  y1: number;
+  half: number;
+}
+
+export interface MapObstacles {
+  boxes: Box[];
+  segments: MapSegment[];
+}
+
 /** One line's strokes: along its edges, and its joins through the stations. */
 interface DrawnLine {
   stroke: SVGPathElement;
@@ -227,6 +241,41 @@ export class MetroLayers {
   /** Screen boxes (other layers' markers) that station names keep clear of; asked at every placement. */
   setLabelObstacles(obstacles: () => Box[]): void {
     this.obstacles = obstacles;
+  }
+
+  /**
+   * What POI markers keep clear of, in screen pixels: station symbols, the station names shown
+   * (the server's; the client's own names make way for the markers instead), and the lines as
+   * segments with their half width. Only what is within `margin` px of the window.
+   */
+  mapObstacles(margin = 120): MapObstacles {
+    const { width, height } = this.map.size;
+    const inView = (x: number, y: number) => x > -margin && y > -margin && x < width + margin && y < height + margin;
+    const boxes: Box[] = [];
+    const bundles = this.bundlesAtStations();
+    for (const [id, { anchor, symbol, label }] of this.stations) {
+      const [x, y] = this.map.toScreen(anchor.x, anchor.y);
+      if (!inView(x, y)) continue;
+      const radius = Number(symbol.getAttribute('height') ?? 8) / 2;
+      const reach = radius + ((bundles.get(id)?.lines ?? 1) - 1) * (LINE_SPACING_PX / 2) + 2;
+      boxes.push({ x0: x - reach, y0: y - reach, x1: x + reach, y1: y + reach });
+      const box = this.serverLabels && label.text.getAttribute('visibility') === 'visible' ? label.text.getBBox() : null;
+      if (box && box.width > 0) {
+        const [lx, ly] = [x + label.anchor.dx, y + label.anchor.dy];
+        boxes.push({ x0: lx + box.x - 2, y0: ly + box.y - 2, x1: lx + box.x + box.width + 2, y1: ly + box.y + box.height + 2 });
+      }
+    }
+    const segments: MapSegment[] = [];
+    this.current.edges.forEach((points, i) => {
+      const half = ((this.orders[i]?.length ?? 1) * LINE_SPACING_PX) / 2 + 1;
+      let previous: [number, number] | null = null;
+      for (const point of points) {
+        const here = this.map.toScreen(point[0], point[1]);
+        if (previous && (inView(...previous) || inView(...here))) segments.push({ x0: previous[0], y0: previous[1], x1: here[0], y1: here[1], half });
+        previous = here;
+      }
+    });
+    return { boxes, segments };
   }
 
   /** Places the station names again (after another layer's markers changed). */

@@ -278,6 +278,8 @@ export class MetroView implements View {
         () => this.layers?.placeLabels(),
       );
       this.layers.setLabelObstacles(() => this.clusters?.boxes() ?? []);
+      // Markers move off stations, lines and the server's station names.
+      this.clusters.setObstacles(() => this.layers?.mapObstacles() ?? { boxes: [], segments: [] });
       this.layers.setLabelsVisible(this.legend.labelsVisible);
       this.layers.setGridVisible(this.options.state.grid);
       this.options.setHasPois(pois.features.length > 0);
