@@ -112,6 +112,10 @@ export class MetroLayers {
   private drawnScale = 0;
   private readonly stopRender: () => void;
   private readonly gridPath: SVGPathElement;
+  private readonly connectorOutline: SVGPathElement;
+  private readonly connectorInner: SVGPathElement;
+  /** Pairs of station ids at one place under one name. */
+  private readonly stationGroups: [string, string][];
   private readonly labels: Label[] = [];
   private readonly poiLayer: SVGGElement;
   private readonly labelLayer: SVGGElement;
@@ -142,6 +146,13 @@ export class MetroLayers {
     map.addLayer('grid', 'world').append(this.gridPath);
     this.casingLayer = map.addLayer('casing', 'world');
     this.drawEdges(map.addLayer('edges', 'world'), edgeFeatures, lines);
+    // Stations of one name at one place (London's "Edgware Road (B)" and "(C)"): one symbol,
+    // their rings joined by a bar over the lines.
+    const connectors = map.addLayer('connectors', 'world');
+    this.connectorOutline = svg('path', { class: 'station-connector-outline' });
+    this.connectorInner = svg('path', { class: 'station-connector' });
+    connectors.append(this.connectorOutline, this.connectorInner);
+    this.stationGroups = groupsAtOnePlace(stationFeatures);
     this.poiLayer = map.addLayer('pois', 'screen');
     const stationLayer = map.addLayer('stations', 'screen');
     this.clusterLayer = map.addLayer('clusters', 'screen');
@@ -384,6 +395,13 @@ export class MetroLayers {
       casing.setAttribute('d', paths.join(''));
     }
     this.gridPath.setAttribute('d', geometry.grid.map(polylinePath).join(''));
+    const bars = this.stationGroups
+      .map(([a, b]) => [geometry.stations.get(a), geometry.stations.get(b)])
+      .filter((pair): pair is [Pt, Pt] => pair[0] !== undefined && pair[1] !== undefined)
+      .map((pair) => polylinePath(pair))
+      .join('');
+    this.connectorOutline.setAttribute('d', bars);
+    this.connectorInner.setAttribute('d', bars);
   }
 
   private drawStation(layer: SVGGElement, feature: StationFeature, frame: Frame, lines: Map<string, MetroLine>): void {
@@ -546,6 +564,38 @@ export class MetroLayers {
     }
     this.map.requestRender();
   }
+}
+
+/** A name without a bracketed part ("Edgware Road (B)" -> "edgware road"). */
+const baseName = (name: string) => name.replace(/\s*[([][^)\]]*[)\]]\s*/g, ' ').trim().toLowerCase();
+
+/**
+ * Pairs of stations that are one place under one name: the same name once bracketed parts are
+ * dropped, less than 500 m apart on the ground.
+ */
+function groupsAtOnePlace(stations: StationFeature[]): [string, string][] {
+  const byName = new Map<string, StationFeature[]>();
+  for (const station of stations) {
+    const key = baseName(station.properties.name);
+    if (key) byName.set(key, [...(byName.get(key) ?? []), station]);
+  }
+  const pairs: [string, string][] = [];
+  for (const group of byName.values()) {
+    for (let i = 0; i < group.length; i++)
+      for (let j = i + 1; j < group.length; j++) {
+        const [a, b] = [group[i]!, group[j]!];
+        if (groundMetres(a.geometry.coordinates, b.geometry.coordinates) < 500) pairs.push([a.properties.id, b.properties.id]);
+      }
+  }
+  return pairs;
+}
+
+/** Equirectangular distance on the ground, metres: enough for stations a few hundred metres apart. */
+function groundMetres([lon0, lat0]: [number, number], [lon1, lat1]: [number, number]): number {
+  const k = Math.PI / 180;
+  const x = (lon1 - lon0) * k * Math.cos(((lat0 + lat1) / 2) * k);
+  const y = (lat1 - lat0) * k;
+  return Math.hypot(x, y) * 6_371_000;
 }
 
 /** Back to one line of the name in `font`, unstretched. */
