@@ -165,10 +165,74 @@ std::string order_row(const std::string& network, const std::string& request, co
 }
 
 // A row of the labels table: time, and labelled / all at each scale.
+// Overlaps among a scale's names, and names crossed by a line's centre (both must be 0), in
+// layout units.
+std::size_t label_overlaps(const metro::Layout& L, const metro::LabelScale& scale) {
+  struct Box {
+    double x0, y0, x1, y1;
+  };
+  std::vector<Box> boxes;
+  for (const auto& l : scale.labels) {
+    const auto p = L.pos[l.node];
+    const double k = scale.px_per_unit;
+    boxes.push_back({p.x + l.x0 / k, p.y - l.y1 / k, p.x + l.x1 / k, p.y - l.y0 / k});
+  }
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < boxes.size(); ++i)
+    for (std::size_t j = i + 1; j < boxes.size(); ++j) {
+      const auto &a = boxes[i], &b = boxes[j];
+      n += a.x0 < b.x1 && b.x0 < a.x1 && a.y0 < b.y1 && b.y0 < a.y1;
+    }
+  // A line's centre through a name: clip each segment to each box (Liang-Barsky).
+  for (const auto& b : boxes)
+    for (const auto& path : L.paths)
+      for (std::size_t i = 1; i < path.size(); ++i) {
+        const auto a0 = path[i - 1], a1 = path[i];
+        double t0 = 0, t1 = 1;
+        const double dx = a1.x - a0.x, dy = a1.y - a0.y;
+        const double pp[4] = {-dx, dx, -dy, dy}, q[4] = {a0.x - b.x0, b.x1 - a0.x, a0.y - b.y0, b.y1 - a0.y};
+        bool in = true;
+        for (int e = 0; e < 4 && in; ++e) {
+          if (pp[e] == 0) {
+            in = q[e] >= 0;
+            continue;
+          }
+          const double t = q[e] / pp[e];
+          if (pp[e] < 0) t0 = std::max(t0, t);
+          else t1 = std::min(t1, t);
+          in = t0 <= t1;
+        }
+        n += in;
+      }
+  return n;
+}
+
+// The names a client of `width` x `height` px shows with the whole network in view (and at
+// twice that zoom): the largest served zoom at or below its own.
+std::pair<std::size_t, std::size_t> named_in_view(const metro::CityLayoutResult& r, double width, double height) {
+  double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300, mean = 0;
+  for (const auto& p : r.layout.pos) x0 = std::min(x0, p.x), y0 = std::min(y0, p.y), x1 = std::max(x1, p.x), y1 = std::max(y1, p.y);
+  for (const auto& path : r.layout.paths)
+    for (std::size_t i = 1; i < path.size(); ++i) mean += std::hypot(path[i].x - path[i - 1].x, path[i].y - path[i - 1].y);
+  mean /= static_cast<double>(std::max<std::size_t>(1, r.layout.paths.size()));
+  const double fit = std::min(width / std::max(x1 - x0, 1e-9), height / std::max(y1 - y0, 1e-9));
+  const auto named = [&](double px_per_unit) {
+    std::size_t n = 0;
+    for (const auto& scale : r.labels)
+      if (scale.mean_edge_px <= mean * px_per_unit * (1 + 1e-9)) n = scale.labels.size();
+    return n;
+  };
+  return {named(fit), named(2 * fit)};
+}
+
 std::string labels_row(const std::string& network, const std::string& request, const metro::CityLayoutResult& r,
                        std::size_t stations) {
-  char cell[64];
-  std::snprintf(cell, sizeof cell, "| %s | %s | %.0f |", network.c_str(), request.c_str(), r.timing.labels);
+  std::size_t overlaps = 0;
+  for (const auto& scale : r.labels) overlaps += label_overlaps(r.layout, scale);
+  const auto [fit, twice] = named_in_view(r, 1200, 720);
+  char cell[160];
+  std::snprintf(cell, sizeof cell, "| %s | %s | %.0f | %zu/%zu | %zu/%zu | %zu |", network.c_str(), request.c_str(), r.timing.labels,
+                fit, stations, twice, stations, overlaps);
   std::string row = cell;
   for (const auto& scale : r.labels) {
     std::snprintf(cell, sizeof cell, " %zu/%zu |", scale.labels.size(), stations);
@@ -178,10 +242,12 @@ std::string labels_row(const std::string& network, const std::string& request, c
 }
 
 void print_labels(const std::vector<std::string>& rows) {
-  std::printf("\n## Station names\n\nStations named at each zoom (the mean edge on screen, px; symbols 12 px across from 60 "
-              "px on), and the placement's time for all zooms.\n\n| network | request | time ms |");
+  std::printf("\n## Station names\n\nThe placement's time for all zooms; stations named in a 1200 x 720 px view of the "
+              "whole network and at twice that zoom; overlaps of names with names or with a line's centre, over all "
+              "zooms (must be 0); and stations named at each zoom (the mean edge on screen, px; symbols 12 px across "
+              "from 60 px on).\n\n| network | request | time ms | in view | 2x | overlaps |");
   for (double e : metro::kLabelMeanEdgesPx) std::printf(" %.0f px |", e);
-  std::printf("\n|---|---|---:|");
+  std::printf("\n|---|---|---:|---:|---:|---:|");
   for (std::size_t i = 0; i < metro::kLabelMeanEdgesPx.size(); ++i) std::printf("---:|");
   std::printf("\n");
   for (const auto& row : rows) std::fputs(row.c_str(), stdout);
