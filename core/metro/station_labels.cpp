@@ -59,31 +59,44 @@ double rect_segment_distance(const Rect& r, XY a, XY b) {
   return best;
 }
 
-// A uniform grid over the layout: items by the cells their boxes cover.
+// A uniform grid over the layout's bounds, cells in one array (a hash of cells was a tenth of
+// the placement's time): items by the cells their boxes cover; boxes beyond the bounds count
+// in the border cells.
 class Grid {
  public:
-  explicit Grid(double cell) : cell_(cell > 0 ? cell : 1) {}
+  Grid() = default;
+  Grid(const Rect& bounds, double cell) : bounds_(bounds), cell_(cell > 0 ? cell : 1) {
+    cols_ = std::max<std::int64_t>(1, static_cast<std::int64_t>(std::ceil((bounds.x1 - bounds.x0) / cell_)) + 1);
+    rows_ = std::max<std::int64_t>(1, static_cast<std::int64_t>(std::ceil((bounds.y1 - bounds.y0) / cell_)) + 1);
+    cells_.assign(static_cast<std::size_t>(cols_ * rows_), {});
+  }
+  void clear() {
+    for (auto& c : cells_) c.clear();
+  }
   void add(const Rect& box, int item) {
-    for_cells(box, [&](std::uint64_t key) { cells_[key].push_back(item); });
+    for_cells(box, [&](std::size_t cell) { cells_[cell].push_back(item); });
   }
   template <typename F>
   void near(const Rect& box, F&& f) const {
-    for_cells(box, [&](std::uint64_t key) {
-      if (auto it = cells_.find(key); it != cells_.end())
-        for (int item : it->second) f(item);
+    for_cells(box, [&](std::size_t cell) {
+      for (int item : cells_[cell]) f(item);
     });
   }
 
  private:
+  std::int64_t col(double x) const { return std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((x - bounds_.x0) / cell_)), 0, cols_ - 1); }
+  std::int64_t row(double y) const { return std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((y - bounds_.y0) / cell_)), 0, rows_ - 1); }
   template <typename F>
   void for_cells(const Rect& box, F&& f) const {
-    const auto lo_x = static_cast<std::int64_t>(std::floor(box.x0 / cell_)), hi_x = static_cast<std::int64_t>(std::floor(box.x1 / cell_));
-    const auto lo_y = static_cast<std::int64_t>(std::floor(box.y0 / cell_)), hi_y = static_cast<std::int64_t>(std::floor(box.y1 / cell_));
-    for (auto x = lo_x; x <= hi_x; ++x)
-      for (auto y = lo_y; y <= hi_y; ++y) f((static_cast<std::uint64_t>(x) << 32) ^ static_cast<std::uint32_t>(y));
+    if (cells_.empty()) return;
+    const auto c0 = col(box.x0), c1 = col(box.x1), r0 = row(box.y0), r1 = row(box.y1);
+    for (auto r = r0; r <= r1; ++r)
+      for (auto c = c0; c <= c1; ++c) f(static_cast<std::size_t>(r * cols_ + c));
   }
-  double cell_;
-  std::unordered_map<std::uint64_t, std::vector<int>> cells_;
+  Rect bounds_{0, 0, 0, 0};
+  double cell_ = 1;
+  std::int64_t cols_ = 0, rows_ = 0;
+  std::vector<std::vector<int>> cells_;
 };
 
 struct Segment {
@@ -94,7 +107,7 @@ struct Segment {
 // The eight sides, counter-clockwise from east, and how much each reads worse than east; a
 // label slid off a line along its side, or on two lines, reads a little worse again.
 constexpr std::array<double, 8> kPlaceCost = {0.0, 0.3, 0.6, 0.4, 0.1, 0.45, 0.65, 0.35};
-constexpr double kSlideCost = 0.15, kTwoLineCost = 0.25;
+constexpr double kSlideCost = 0.15, kTwoLineCost = 0.25, kFarCost = 0.2;
 constexpr double kSameSideBonus = 0.5;  // the side a neighbour on the line took
 
 // A name's text: its width, and where it breaks onto two lines (0: it does not).
@@ -164,14 +177,21 @@ class Placer {
     mean_ = g.edges.empty() ? 1.0 : total / g.edges.size();
     if (!(mean_ > 0)) mean_ = 1;
     grid_cell_ = mean_;
-    Grid segment_grid(grid_cell_);
+    Rect bounds{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity(),
+                -std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
+    for (const auto& p : L.pos) bounds = {std::min(bounds.x0, p.x), std::min(bounds.y0, p.y), std::max(bounds.x1, p.x), std::max(bounds.y1, p.y)};
+    for (const auto& s : segments_)
+      for (XY p : {s.a, s.b}) bounds = {std::min(bounds.x0, p.x), std::min(bounds.y0, p.y), std::max(bounds.x1, p.x), std::max(bounds.y1, p.y)};
+    if (!(bounds.x0 <= bounds.x1)) bounds = {0, 0, 0, 0};
+    bounds_ = bounds;
+    Grid segment_grid(bounds_, grid_cell_);
     for (std::size_t i = 0; i < segments_.size(); ++i) {
       const auto& s = segments_[i];
       segment_grid.add({std::min(s.a.x, s.b.x), std::min(s.a.y, s.b.y), std::max(s.a.x, s.b.x), std::max(s.a.y, s.b.y)},
                        static_cast<int>(i));
     }
     segment_grid_ = std::move(segment_grid);
-    Grid symbol_grid(grid_cell_);
+    Grid symbol_grid(bounds_, grid_cell_);
     for (std::uint32_t v = 0; v < g.pos.size(); ++v) symbol_grid.add({L.pos[v].x, L.pos[v].y, L.pos[v].x, L.pos[v].y}, static_cast<int>(v));
     symbol_grid_ = std::move(symbol_grid);
     for (const auto& [v, n] : bundle_) max_lines_ = std::max(max_lines_, n);
@@ -206,7 +226,12 @@ class Placer {
     candidate_.clear();
     label_rects_.clear();
     placed_.assign(g_.pos.size(), -1);
-    label_grid_ = Grid(grid_cell_);
+    if (label_grid_cells_ != grid_cell_) {
+      label_grid_ = Grid(bounds_, grid_cell_);
+      label_grid_cells_ = grid_cell_;
+    } else {
+      label_grid_.clear();
+    }
     std::vector<std::uint32_t> left_out;
     for (auto v : order_)
       if (!place_best(v)) left_out.push_back(v);
@@ -235,24 +260,29 @@ class Placer {
     return {p.x + l.x0 / scale_, p.y - l.y1 / scale_, p.x + l.x1 / scale_, p.y - l.y0 / scale_};
   }
 
-  // Candidate c: 0..15 the place (the 8 sides, then E, W, N, S slid to one side and to the
-  // other), plus 16 for two lines of text.
-  static constexpr int kCandidates = 32;
+  // Candidate c: c % 16 the place (the 8 sides, then E, W, N, S slid to one side and to the
+  // other); (c / 16) % 2 two lines of text; c / 32 half a line further out (off the lines of an
+  // interchange whose diagonals pass close to the nearer places).
+  static constexpr int kCandidates = 64;
+  static bool two_line(int c) { return (c / 16) % 2 == 1; }
+  static bool far(int c) { return c >= 32; }
   PlacedLabel candidate(std::uint32_t v, int c) const {
     const int place = c % 16;
     const int side = candidate_side(c);
     const int slide = place < 8 ? 0 : (place % 2 ? 1 : -1);
-    const Text& t = c >= 16 ? two_lines_[v] : one_line_[v];
+    const Text& t = two_line(c) ? two_lines_[v] : one_line_[v];
     // The lane a slid label keeps clear of: half the widest bundle through v, and clearance.
     const auto it = bundle_.find(v);
     const double n = it == bundle_.end() ? 1.0 : static_cast<double>(it->second);
     const double lane = n * style_.line_spacing_px / 2 + style_.clearance_px + 1;
-    return place_box(v, side, slide, t, reach_px(v) + style_.gap_px, lane, style_);
+    const double out = reach_px(v) + style_.gap_px + (far(c) ? style_.height_px / 2 : 0);
+    return place_box(v, side, slide, t, out, lane, style_);
   }
   bool has_two_lines(std::uint32_t v) const { return two_lines_[v].split != 0; }
+  bool valid(std::uint32_t v, int c) const { return !two_line(c) || has_two_lines(v); }
   double candidate_cost(std::uint32_t v, int c) const {
     const auto l = candidate(v, c);
-    return cost(v, c) + (l.slide != 0 ? kSlideCost : 0) + (c >= 16 ? kTwoLineCost : 0);
+    return cost(v, c) + (l.slide != 0 ? kSlideCost : 0) + (two_line(c) ? kTwoLineCost : 0) + (far(c) ? kFarCost : 0);
   }
 
   // Clear of lines and symbols (labels are checked separately).
@@ -264,6 +294,10 @@ class Placer {
       if (!clear) return;
       const auto& s = segments_[static_cast<std::size_t>(i)];
       const double half = (static_cast<double>(s.lines) * style_.line_spacing_px / 2 + style_.clearance_px) / scale_;
+      // Boxes apart by more than the half width first: most segments near a label are.
+      if (std::max(s.a.x, s.b.x) + half <= r.x0 || std::min(s.a.x, s.b.x) - half >= r.x1 ||
+          std::max(s.a.y, s.b.y) + half <= r.y0 || std::min(s.a.y, s.b.y) - half >= r.y1)
+        return;
       if (rect_segment_distance(r, s.a, s.b) < half) clear = false;
     });
     if (!clear) return false;
@@ -312,7 +346,7 @@ class Placer {
   std::vector<int> ranked_candidates(std::uint32_t v) const {
     std::vector<std::pair<double, int>> ranked;
     for (int c = 0; c < kCandidates; ++c) {
-      if (c >= 16 && !has_two_lines(v)) break;
+      if (!valid(v, c)) continue;
       ranked.push_back({candidate_cost(v, c), c});
     }
     std::sort(ranked.begin(), ranked.end());
@@ -360,11 +394,10 @@ class Placer {
   // v takes a place whose only conflict is one label that has another free place.
   bool repair(std::uint32_t v) {
     for (int p = 0; p < kCandidates; ++p) {
-      if (p >= 16 && !has_two_lines(v)) break;
+      if (!valid(v, p)) continue;
       const Rect r = rect_of(v, candidate(v, p));
-      if (!clear_of_map(r)) continue;
       const auto conflicts = label_conflicts(r);
-      if (conflicts.size() != 1) continue;
+      if (conflicts.size() != 1 || !clear_of_map(r)) continue;
       const int other = conflicts.front();
       const auto w = labels_[static_cast<std::size_t>(other)].node;
       const int old_place = candidate_[static_cast<std::size_t>(other)];
@@ -393,7 +426,9 @@ class Placer {
   std::vector<Text> one_line_, two_lines_;  // per node: its name on one line, and on two
   std::size_t max_lines_ = 1;
   double mean_ = 1, grid_cell_ = 1;
-  Grid segment_grid_{1}, symbol_grid_{1}, label_grid_{1};
+  Rect bounds_{0, 0, 0, 0};
+  Grid segment_grid_, symbol_grid_, label_grid_;
+  double label_grid_cells_ = 0;
   // Per scale:
   double scale_ = 1, symbol_px_ = 0;
   std::vector<PlacedLabel> labels_;
