@@ -26,6 +26,11 @@ export interface MetroLine {
   label: string;
   /** "rrggbb" without '#', may be empty */
   color: string;
+  /**
+   * How to tell it from a line of nearly its colour on the same map: a thin contrasting
+   * border, and/or a dash pattern in stroke widths (empty: solid). Absent: plain.
+   */
+  style?: { casing: boolean; dash: number[] };
 }
 
 export interface CityDetail extends CitySummary {

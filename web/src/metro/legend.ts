@@ -1,6 +1,6 @@
 import type { MetroLine } from '../api/types';
 import { h } from '../ui/dom';
-import { lineColor, sortLines } from './lines';
+import { lineCasing, sortLines, swatchBackground } from './lines';
 
 export interface LegendHandlers {
   onHighlight(lineId: string | null): void;
@@ -67,7 +67,7 @@ export class Legend {
     const button = h(
       'button',
       { type: 'button', class: 'legend-line', 'aria-pressed': 'false', 'data-line': line.id, title: `Highlight ${line.label}` },
-      h('span', { class: 'swatch', style: `background:${lineColor(line)}`, 'aria-hidden': 'true' }),
+      h('span', { class: lineCasing(line) ? 'swatch cased' : 'swatch', style: `background:${swatchBackground(line)}`, 'aria-hidden': 'true' }),
       line.label,
     );
     button.addEventListener('click', () => {

@@ -21,3 +21,24 @@ export function textColorOn(hex: string): string {
 export function sortLines(lines: MetroLine[]): MetroLine[] {
   return [...lines].sort((a, b) => a.label.localeCompare(b.label, undefined, { numeric: true, sensitivity: 'base' }));
 }
+
+/** The line's dash pattern in px for a stroke of `width` px ("" for a solid line). */
+export function lineDash(line: MetroLine | undefined, width: number): string {
+  const dash = line?.style?.dash ?? [];
+  return dash.length > 0 ? dash.map((d) => (d * width).toFixed(1)).join(' ') : '';
+}
+
+/** Whether the line is drawn with a thin contrasting border. */
+export function lineCasing(line: MetroLine | undefined): boolean {
+  return line?.style?.casing === true;
+}
+
+/** A legend swatch's CSS background: the colour, dashed as the line is (stripes for a dash). */
+export function swatchBackground(line: MetroLine): string {
+  const color = lineColor(line);
+  const dash = line.style?.dash ?? [];
+  if (dash.length < 2) return color;
+  const on = dash[0]! * 6;
+  const off = dash[1]! * 6;
+  return `repeating-linear-gradient(90deg, ${color} 0 ${on}px, transparent ${on}px ${on + off}px)`;
+}

@@ -5,7 +5,7 @@ import { polylinePath, svg } from '../map/svg';
 import type { Anchor, SvgMap } from '../map/svg-map';
 import { MapTooltip } from '../map/tooltip';
 import { bundlePieces, LINE_SPACING_PX } from './bundles';
-import { lineColor } from './lines';
+import { lineCasing, lineColor, lineDash } from './lines';
 import type { Geometry, Pt } from './morph';
 
 export type MetroPick = { kind: 'station'; station: StationFeature } | { kind: 'poi'; poi: PoiFeature };
@@ -78,8 +78,13 @@ export interface MapObstacles {
 interface DrawnLine {
   stroke: SVGPathElement;
   joins: SVGPathElement;
+  /** A thin contrasting border under the stroke and joins (a line told apart from one of its colour). */
+  border?: SVGPathElement;
   color: string;
 }
+
+/** The lines' stroke width, px (styles: .edge). */
+const LINE_WIDTH_PX = 3.5;
 
 /** The casing under bundles of this many lines is this much wider than the bundle, px. */
 const CASING_MARGIN_PX = 3.5;
@@ -190,6 +195,7 @@ export class MetroLayers {
       const off = lineId !== null && id !== lineId;
       line.stroke.classList.toggle('dimmed', off);
       line.joins.classList.toggle('dimmed', off);
+      line.border?.classList.toggle('dimmed', off);
     }
     for (const { feature, element, label } of this.stations.values()) {
       const off = dimmed(feature.properties.lines);
@@ -346,11 +352,16 @@ export class MetroLayers {
       this.edges.push({ from, to, lines: lineIds });
       for (const id of lineIds) {
         if (this.drawnLines.has(id)) continue;
-        const color = lineColor(lines.get(id));
+        const line = lines.get(id);
+        const color = lineColor(line);
         const stroke = svg('path', { class: 'edge', stroke: color, 'data-line': id });
         const joins = svg('path', { class: 'edge-join', stroke: color, 'data-line': id });
+        const dash = lineDash(line, LINE_WIDTH_PX);
+        if (dash) stroke.style.strokeDasharray = dash;
+        const border = lineCasing(line) ? svg('path', { class: 'edge-border', 'data-line': id }) : undefined;
+        if (border) edgeLayer.append(border);
         edgeLayer.append(stroke, joins);
-        this.drawnLines.set(id, { stroke, joins, color });
+        this.drawnLines.set(id, { stroke, joins, border, color });
       }
     }
     this.orders = this.edges.map((edge) => edge.lines);
@@ -377,6 +388,7 @@ export class MetroLayers {
     for (const [id, line] of this.drawnLines) {
       line.stroke.setAttribute('d', (pieces.strokes.get(id) ?? []).map(polylinePath).join(''));
       line.joins.setAttribute('d', (pieces.joins.get(id) ?? []).map(polylinePath).join(''));
+      line.border?.setAttribute('d', `${line.stroke.getAttribute('d')}${line.joins.getAttribute('d')}`);
     }
     const bySize = new Map<number, string[]>();
     for (const bundle of bundles) {
