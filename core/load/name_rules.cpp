@@ -49,13 +49,13 @@ std::string patterns_error(const std::vector<std::string>& patterns, const std::
   return "";
 }
 
-// One round of the name rules; clean_name repeats it until nothing changes.
-std::string clean_once(const std::string& name, const MetroRules& rules) {
-  if (auto it = rules.rename.find(name); it != rules.rename.end()) return collapse_spaces(it->second);
-  auto s = drop_bracketed(name, rules.drop_brackets);
-  s = strip_affixes(s, rules.strip_prefixes, rules.strip_suffixes);
-  if (rules.title_case && is_all_caps(s)) s = title_case(s, rules.particles);
-  return s;
+// The general rules, one step each; clean_name applies them in turn until nothing changes.
+std::string clean_step(int step, const std::string& name, const MetroRules& rules) {
+  switch (step) {
+    case 0: return drop_bracketed(name, rules.drop_brackets);
+    case 1: return strip_affixes(name, rules.strip_prefixes, rules.strip_suffixes);
+    default: return rules.title_case && is_all_caps(name) ? title_case(name, rules.particles) : name;
+  }
 }
 
 }  // namespace
@@ -84,8 +84,15 @@ std::string rules_error(const MetroRules& rules) {
   for (const auto& [from, to] : rules.rename) {
     if (auto why = text_error(from, kMaxRuleTextBytes); !why.empty()) return "rename: a name is " + why;
     if (auto why = text_error(to, kMaxRuleTextBytes); !why.empty()) return "rename['" + from + "']: " + why;
-    if (rules.rename.count(to) && to != from)
-      return "rename['" + from + "']: '" + to + "' is renamed itself (rename to the final name)";
+    if (rules.rename.count(to)) {
+      if (to != from) return "rename['" + from + "']: '" + to + "' is renamed itself (rename to the final name)";
+      continue;  // kept as it is, whatever the other rules would do
+    }
+    // A new name is final: the other rules must leave it alone, or cleaning a clean name
+    // would change it.
+    if (auto again = clean_name(to, rules); again != to)
+      return "rename['" + from + "']: the other rules would change '" + to + "' to '" + again +
+             "' (rename to that, or map '" + to + "' to itself to keep it)";
   }
   for (const auto& [id, o] : rules.lines) {
     if (id.empty()) return "lines: an empty line id";
@@ -206,13 +213,19 @@ std::string title_case(std::string_view name, const std::vector<std::string>& pa
 
 std::string clean_name(std::string_view name, const MetroRules& rules) {
   std::string s = collapse_spaces(name);
-  // Repeated to a fixed point so that the result is clean under the rules (a rename's target
-  // included); a few rounds suffice, the bound only guards against contradictory rules.
-  for (int round = 0; round < 8; ++round) {
-    auto next = clean_once(s, rules);
-    if (next == s) break;
-    s = std::move(next);
+  // Rounds of the steps until nothing changes, so the result is clean: each round shortens the
+  // name or title-cases it (once), so a few suffice. A rename ends it: the data's name and every
+  // form between two steps are looked up, and the new name is final (rules_error checks that
+  // it is clean).
+  for (int round = 0; round < 64; ++round) {
+    const std::string start = s;
+    for (int step = 0; step < 3; ++step) {
+      if (auto it = rules.rename.find(s); it != rules.rename.end()) return collapse_spaces(it->second);
+      s = clean_step(step, s, rules);
+    }
+    if (s == start) break;
   }
+  if (auto it = rules.rename.find(s); it != rules.rename.end()) return collapse_spaces(it->second);
   return s;
 }
 

@@ -34,7 +34,8 @@ struct MetroRules {
   bool title_case = false;
   std::vector<std::string> particles;
   // Exact name -> name, for what the general rules cannot fix (a missing accent). Looked up on
-  // the data's name and on each cleaned form; the other rules then apply to the new name too.
+  // the data's name and on each cleaned form; the new name is final, so the other rules must
+  // leave it as it is (rules_error), or it must map to itself ({"ISCTE": "ISCTE"} keeps capitals).
   std::map<std::string, std::string> rename;
   // Patterns matched against each line's id and label (whole): matching lines are removed.
   std::vector<std::string> hide_lines;
@@ -68,7 +69,8 @@ bool is_all_caps(std::string_view name);
 // `particles` (matched case-insensitively) all lower case unless first.
 std::string title_case(std::string_view name, const std::vector<std::string>& particles);
 
-// All name rules, repeated until nothing changes: cleaning a clean name changes nothing.
+// All name rules, repeated until nothing changes or a rename applies: cleaning a clean name
+// (with valid rules) changes nothing.
 std::string clean_name(std::string_view name, const MetroRules& rules);
 
 // True when a hide_lines pattern matches the line's id or label.
