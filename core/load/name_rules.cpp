@@ -237,8 +237,8 @@ bool line_hidden(const model::MetroLine& line, const MetroRules& rules) {
 
 RulesReport apply_metro_rules(model::MetroNetwork& net, const MetroRules& rules) {
   RulesReport report;
-  for (const auto& [id, o] : rules.lines) {
-    (void)o;
+  for (const auto& entry : rules.lines) {
+    const auto& id = entry.first;
     if (std::none_of(net.lines.begin(), net.lines.end(), [&](const model::MetroLine& l) { return l.id == id; }))
       throw std::invalid_argument("rules.lines: the network has no line with id '" + id + "'");
   }
