@@ -56,6 +56,13 @@ nlohmann::json city_summary(const model::CityInfo& info) {
           {"attribution", attribution_list(info)}};
 }
 
+nlohmann::json line_json(const model::MetroLine& line) {
+  return {{"id", line.id},
+          {"label", line.label},
+          {"color", line.color},
+          {"style", {{"casing", line.style.casing}, {"dash", line.style.dash}}}};
+}
+
 nlohmann::json road_network_summary(const model::RoadNetworkInfo& info) {
   return {{"id", info.id},
           {"name", info.name},
@@ -112,7 +119,7 @@ nlohmann::json metro_geojson(const model::City& city, const std::optional<geo::B
                                         {"lines", line_ids(e.lines)}}}});
   }
   nlohmann::json lines = nlohmann::json::array();
-  for (const auto& l : net.lines) lines.push_back({{"id", l.id}, {"label", l.label}, {"color", l.color}});
+  for (const auto& l : net.lines) lines.push_back(line_json(l));
   return {{"type", "FeatureCollection"},
           {"city", city.info.id},
           {"version", city.info.version},

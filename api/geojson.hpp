@@ -18,6 +18,10 @@ nlohmann::json position(geo::LonLat p);
 nlohmann::json bbox_json(const geo::BBox& box);
 
 nlohmann::json city_summary(const model::CityInfo& info);
+
+// One entry of a city's line list: {id, label, color, style: {casing, dash}}. The style tells
+// lines of close colours apart (metro/line_styles.hpp); {"casing": false, "dash": []} is plain.
+nlohmann::json line_json(const model::MetroLine& line);
 nlohmann::json road_network_summary(const model::RoadNetworkInfo& info);
 
 // Stations as Points and edges as LineStrings, with the line table and attribution as foreign

@@ -46,7 +46,7 @@ void add_city_routes(Router& router, AppContext& ctx) {
     auto city = require_city(ctx, req);
     auto body = city_summary(city->info);
     nlohmann::json lines = nlohmann::json::array();
-    for (const auto& l : city->metro.lines) lines.push_back({{"id", l.id}, {"label", l.label}, {"color", l.color}});
+    for (const auto& l : city->metro.lines) lines.push_back(line_json(l));
     body["lines"] = std::move(lines);
     std::set<std::string> categories;
     for (const auto& p : city->pois)

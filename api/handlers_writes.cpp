@@ -9,6 +9,7 @@
 
 #include "load/load_error.hpp"
 #include "store/importer.hpp"
+#include "store/metro_rules.hpp"
 #include "store/repo.hpp"
 
 namespace tourmap::api {
@@ -59,9 +60,9 @@ Response run_import(F&& import) {
   }
 }
 
-// station-csvs sends its three files as {"stations": "...", "lines": "...", "connections": "..."}.
-std::vector<std::string> station_csv_files(const Request& req, const UploadDir& dir, const std::string& id) {
-  auto body = parse_json_body(req);
+// station-csvs sends its three files as {"stations": "...", "lines": "...", "connections": "..."},
+// with the city's rules (store/metro_rules.hpp) as an optional "rules" member, as in a manifest.
+std::vector<std::string> station_csv_files(const nlohmann::json& body, const UploadDir& dir, const std::string& id) {
   std::vector<std::string> files;
   for (const char* part : {"stations", "lines", "connections"}) {
     if (!body.is_object() || !body.contains(part) || !body[part].is_string())
@@ -99,9 +100,17 @@ Response put_metro(AppContext& ctx, Request& req) {
     throw bad("name", "a new city needs a name (?name=...)");
   import.force = query_bool(req, "force", false);
   UploadDir dir;
-  if (import.format == store::MetroFormat::station_csvs)
-    import.files = station_csv_files(req, dir, id);
-  else
+  if (import.format == store::MetroFormat::station_csvs) {
+    auto body = parse_json_body(req);
+    import.files = station_csv_files(body, dir, id);
+    if (body.contains("rules")) {
+      try {
+        import.rules = store::parse_metro_rules(body["rules"], "rules");
+      } catch (const std::invalid_argument& e) {
+        throw ApiError(400, "invalid_rules", std::string("body.") + e.what() + ": nothing was imported", "rules");
+      }
+    }
+  } else
     import.files = {dir.write(id + (import.format == store::MetroFormat::loom ? ".geojson" : ".csv"), req.body)};
   return run_import([&] {
     auto db = ctx.db.acquire();

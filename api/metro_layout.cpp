@@ -300,7 +300,7 @@ std::string layout_body(const CityMetroData& d, const LayoutRequest& req, const 
                     {"properties", std::move(props)}});
   }
   nlohmann::json lines = nlohmann::json::array();
-  for (const auto& l : net.lines) lines.push_back({{"id", l.id}, {"label", l.label}, {"color", l.color}});
+  for (const auto& l : net.lines) lines.push_back(line_json(l));
   nlohmann::json attribution = nlohmann::json::array();
   if (!city.info.attribution.empty()) attribution.push_back(city.info.attribution);
   if (!city.info.poi_attribution.empty()) attribution.push_back(city.info.poi_attribution);

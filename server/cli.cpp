@@ -13,9 +13,11 @@
 #include "load/load_error.hpp"
 #include "store/importer.hpp"
 #include "store/manifest.hpp"
+#include "store/metro_rules.hpp"
 #include "store/migrate.hpp"
 
 #include <boost/program_options.hpp>
+#include <nlohmann/json.hpp>
 
 #include <cmath>
 #include <cstdio>
@@ -211,6 +213,17 @@ void print_result(const store::ImportResult& r) {
   std::fflush(stdout);
 }
 
+// A JSON file holding one rules object (store/metro_rules.hpp).
+load::MetroRules read_rules(const std::string& path) {
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(load::read_file(path));
+  } catch (const nlohmann::json::exception& e) {
+    throw std::invalid_argument(path + ": not valid JSON: " + e.what());
+  }
+  return store::parse_metro_rules(j, path + ": rules");
+}
+
 int cmd_import(const std::vector<std::string>& args) {
   if (args.empty() || args[0] == "--help" || args[0] == "-h") {
     std::printf("usage: tourmap import manifest|metro|pois|roads [options] FILE...\n");
@@ -220,7 +233,7 @@ int cmd_import(const std::vector<std::string>& args) {
   std::vector<std::string> rest(args.begin() + 1, args.end());
   Config c = default_config();
   std::vector<std::string> files;
-  std::string city, name, format = "loom", attribution, category, id;
+  std::string city, name, format = "loom", attribution, category, id, rules_file;
   bool force = false;
   po::options_description desc("tourmap import " + what + " options");
   desc.add_options()("help,h", "show this help")("force", po::bool_switch(&force), "import even if unchanged")(
@@ -233,7 +246,8 @@ int cmd_import(const std::vector<std::string>& args) {
         "name", po::value(&name)->required(), "city name")(
         "format", po::value(&format)->default_value(format),
         "loom | station-csvs (stations, lines, connections) | line-csv")(
-        "attribution", po::value(&attribution), "data attribution shown with the city");
+        "attribution", po::value(&attribution), "data attribution shown with the city")(
+        "rules", po::value(&rules_file), "JSON file of name and line rules, as a manifest's metro \"rules\"");
   if (what == "pois")
     desc.add_options()("city", po::value(&city)->required(), "city id")(
         "category", po::value(&category), "category for POIs whose source has none")(
@@ -278,7 +292,9 @@ int cmd_import(const std::vector<std::string>& args) {
                 manifest.pois.size(), manifest.roads.size(), c.data_dir.c_str());
     store::run_manifest(db, manifest, force, print_result);
   } else if (what == "metro") {
-    print_result(store::import_metro(db, {{city, name, attribution}, store::parse_metro_format(format), files, force}));
+    store::MetroImport import{{city, name, attribution}, store::parse_metro_format(format), files, force};
+    if (!rules_file.empty()) import.rules = read_rules(rules_file);
+    print_result(store::import_metro(db, import));
   } else if (what == "pois") {
     if (files.size() != 1) throw std::invalid_argument("give one POI file");
     print_result(store::import_pois(db, {city, files[0], category, attribution, force}));

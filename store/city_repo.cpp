@@ -28,6 +28,27 @@ std::vector<geo::LonLat> unpack_polyline(const std::vector<unsigned char>& blob)
   return pts;
 }
 
+// metro_lines.style: '' for a plain stroke, else {"casing": true, "dash": [2, 1]} (either part).
+std::string style_text(const model::LineStyle& style) {
+  if (style.plain()) return "";
+  nlohmann::json j = nlohmann::json::object();
+  if (style.casing) j["casing"] = true;
+  if (!style.dash.empty()) j["dash"] = style.dash;
+  return j.dump();
+}
+
+model::LineStyle parse_style(const std::string& text) {
+  model::LineStyle style;
+  if (text.empty()) return style;
+  auto j = nlohmann::json::parse(text, nullptr, false);
+  if (!j.is_object()) return style;  // written by style_text only; a damaged value draws plain
+  if (j.contains("casing") && j["casing"].is_boolean()) style.casing = j["casing"].get<bool>();
+  if (j.contains("dash") && j["dash"].is_array())
+    for (const auto& d : j["dash"])
+      if (d.is_number()) style.dash.push_back(d.get<double>());
+  return style;
+}
+
 constexpr const char* kCitySelect =
     "SELECT c.id, c.name, c.min_lon, c.min_lat, c.max_lon, c.max_lat, c.proj_lon0, c.proj_lat0,"
     " c.attribution, c.poi_attribution, c.version,"
@@ -81,10 +102,11 @@ std::int64_t save_city_metro(Db& db, const CityMeta& meta, const model::MetroNet
   for (const char* table : {"metro_edges", "metro_nodes", "metro_lines"})
     db.prepare(std::string("DELETE FROM ") + table + " WHERE city_id = ?").bind(1, meta.id).run();
 
-  auto ins_line = db.prepare("INSERT INTO metro_lines (city_id, idx, id, label, color) VALUES (?, ?, ?, ?, ?)");
+  auto ins_line =
+      db.prepare("INSERT INTO metro_lines (city_id, idx, id, label, color, style) VALUES (?, ?, ?, ?, ?, ?)");
   for (std::size_t i = 0; i < net.lines.size(); ++i) {
     const auto& l = net.lines[i];
-    ins_line.bind(1, meta.id).bind(2, i).bind(3, l.id).bind(4, l.label).bind(5, l.color).run();
+    ins_line.bind(1, meta.id).bind(2, i).bind(3, l.id).bind(4, l.label).bind(5, l.color).bind(6, style_text(l.style)).run();
   }
   auto ins_node = db.prepare(
       "INSERT INTO metro_nodes (city_id, idx, id, station_id, name, lon, lat) VALUES (?, ?, ?, ?, ?, ?, ?)");
@@ -161,9 +183,10 @@ std::optional<model::City> load_city(Db& db, const std::string& id) {
   model::City city;
   city.info = *info;
 
-  auto lines = db.prepare("SELECT id, label, color FROM metro_lines WHERE city_id = ? ORDER BY idx");
+  auto lines = db.prepare("SELECT id, label, color, style FROM metro_lines WHERE city_id = ? ORDER BY idx");
   lines.bind(1, id);
-  while (lines.step()) city.metro.lines.push_back({lines.text(0), lines.text(1), lines.text(2)});
+  while (lines.step())
+    city.metro.lines.push_back({lines.text(0), lines.text(1), lines.text(2), parse_style(lines.text(3))});
 
   auto nodes = db.prepare("SELECT id, station_id, name, lon, lat FROM metro_nodes WHERE city_id = ? ORDER BY idx");
   nodes.bind(1, id);

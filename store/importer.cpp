@@ -3,9 +3,12 @@
 #include "load/file.hpp"
 #include "load/load_error.hpp"
 #include "load/metro_load.hpp"
+#include "load/name_rules.hpp"
 #include "load/osm_roads.hpp"
 #include "load/poi_load.hpp"
 #include "geo/projection.hpp"
+#include "metro/line_styles.hpp"
+#include "metro_rules.hpp"
 #include "util/hash.hpp"
 #include "util/stop.hpp"
 
@@ -61,6 +64,35 @@ void require_id(const std::string& id, const char* what) {
                                 "': use lower-case letters, digits, '-' and '_' (at most 64)");
 }
 
+// "; rules: 171 names cleaned, 1 line hidden (U55bau: 3 edges, 2 stations removed), ..."
+std::string rules_summary(const load::RulesReport& r, const load::MetroRules& rules) {
+  if (rules.empty()) return "";
+  std::string out = "; rules: " + std::to_string(r.names_changed) + " names cleaned";
+  if (!r.hidden_lines.empty()) {
+    std::string labels;
+    for (const auto& l : r.hidden_lines) labels += (labels.empty() ? "" : ", ") + l;
+    out += ", " + std::to_string(r.hidden_lines.size()) + " line(s) hidden (" + labels + ": " +
+           std::to_string(r.removed_edges) + " edges, " + std::to_string(r.removed_stations) + " stations and " +
+           std::to_string(r.removed_junctions) + " junctions removed)";
+  }
+  if (r.lines_overridden > 0) out += ", " + std::to_string(r.lines_overridden) + " line(s) relabelled or recoloured";
+  return out;
+}
+
+// "; styles: U55 casing (close to U5)"
+std::string styles_summary(const model::MetroNetwork& net, const std::vector<metro::CloseGroup>& groups) {
+  std::string out;
+  for (const auto& g : groups) {
+    const auto& plain = net.lines[g.lines.front()];
+    for (std::size_t k = 1; k < g.lines.size(); ++k) {
+      const auto& line = net.lines[g.lines[k]];
+      out.append(out.empty() ? "; styles: " : ", ").append(line.label).append(" ");
+      out.append(metro::describe_style(line.style)).append(" (close to ").append(plain.label).append(")");
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
 MetroFormat parse_metro_format(const std::string& name) {
@@ -88,6 +120,13 @@ std::string fingerprint_files(const std::vector<std::string>& files) {
   return util::hex64(h);
 }
 
+std::string metro_fingerprint(const std::vector<std::string>& files, const load::MetroRules& rules) {
+  auto h = util::fnv1a64(kMetroProcessing);
+  h = util::fnv1a64("\xff", h);
+  h = util::fnv1a64(metro_rules_json(rules).dump(), h);
+  return fingerprint_files(files) + "/" + util::hex64(h);
+}
+
 ImportResult import_metro(Db& db, const MetroImport& req, const load::ImportLimits& limits) {
   require_id(req.city.id, "city");
   if (req.city.name.empty()) throw std::invalid_argument("city name is empty");
@@ -99,7 +138,8 @@ ImportResult import_metro(Db& db, const MetroImport& req, const load::ImportLimi
   ImportResult result;
   result.kind = "metro";
   result.target = req.city.id;
-  auto fp = fingerprint_files(req.files);
+  if (auto why = load::rules_error(req.rules); !why.empty()) throw std::invalid_argument("rules." + why);
+  auto fp = metro_fingerprint(req.files, req.rules);
   if (!req.force && last_fingerprint(db, "metro", req.city.id) == fp && city_version(db, req.city.id)) {
     result.skipped = true;
     result.version = city_version(db, req.city.id).value_or(0);
@@ -114,6 +154,8 @@ ImportResult import_metro(Db& db, const MetroImport& req, const load::ImportLimi
       break;
     case MetroFormat::line_csv: net = load::load_metro_line_csv(req.files[0], limits, &stats); break;
   }
+  auto cleaned = load::apply_metro_rules(net, req.rules);
+  auto close = metro::assign_line_styles(net, req.rules.min_colour_difference.value_or(metro::kMinColourDifference));
   result.rows = net.nodes.size() + net.edges.size() + net.lines.size();
   result.seconds = seconds_since(start);
   result.version = save_city_metro(db, req.city, net,
@@ -125,6 +167,7 @@ ImportResult import_metro(Db& db, const MetroImport& req, const load::ImportLimi
   if (stats.merged_connections > 0)
     result.summary += " (" + std::to_string(stats.merged_connections) + " of " + std::to_string(stats.connections) +
                       " connections merged into parallel edges)";
+  result.summary += rules_summary(cleaned, req.rules) + styles_summary(net, close);
   return result;
 }
 

@@ -8,6 +8,7 @@
 #include "repo.hpp"
 
 #include "load/import_limits.hpp"
+#include "load/name_rules.hpp"
 
 #include <functional>
 #include <string>
@@ -34,7 +35,11 @@ struct MetroImport {
   MetroFormat format = MetroFormat::loom;
   std::vector<std::string> files;  // loom/line-csv: 1 file; station-csvs: stations, lines, connections
   bool force = false;
+  load::MetroRules rules{};  // applied after loading (load/name_rules.hpp)
 };
+// Loads the files, applies the rules, styles lines of close colours (metro/line_styles.hpp)
+// and stores the result. Skipped when the files, the rules and the import-time processing are
+// those of the last import (metro_fingerprint).
 ImportResult import_metro(Db& db, const MetroImport& request, const load::ImportLimits& limits = {});
 
 struct PoiImport {
@@ -55,5 +60,12 @@ ImportResult import_roads(Db& db, const RoadImport& request, const load::ImportL
 
 // FNV-1a 64 over the files' bytes, as hex: identifies a source version.
 std::string fingerprint_files(const std::vector<std::string>& files);
+
+// A metro import's source version: the files' fingerprint, then one of the rules (their
+// canonical JSON) and of the processing at import (kMetroProcessing). A changed rule, or a
+// build that cleans or styles differently, imports the city again; the same files and rules
+// twice change nothing.
+inline constexpr const char* kMetroProcessing = "names+styles/1";
+std::string metro_fingerprint(const std::vector<std::string>& files, const load::MetroRules& rules);
 
 }  // namespace tourmap::store

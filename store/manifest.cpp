@@ -1,5 +1,7 @@
 #include "manifest.hpp"
 
+#include "metro_rules.hpp"
+
 #include <nlohmann/json.hpp>
 
 #include <stdexcept>
@@ -44,6 +46,7 @@ Manifest parse_manifest(const std::string& json_text, const std::string& data_di
       if (!f.is_string()) throw std::invalid_argument(where + ".metro.files: expected strings");
       metro.files.push_back(resolve(data_dir, f.get<std::string>()));
     }
+    if (mj.contains("rules")) metro.rules = parse_metro_rules(mj["rules"], where + ".metro.rules");
     m.metros.push_back(metro);
     if (c.contains("pois")) {
       const auto& pj = c["pois"];

@@ -3,9 +3,12 @@
 // scripts/sample-data.json describes ../shared/data; `tourmap import manifest` runs one.
 //
 // {"cities": [{"id": "vienna", "name": "Vienna",
-//              "metro": {"format": "loom", "files": ["metro/loom_wien.json"], "attribution": "..."},
+//              "metro": {"format": "loom", "files": ["metro/loom_wien.json"], "attribution": "...",
+//                        "rules": {"strip_suffixes": [" (Wien)"], ...}},
 //              "pois": {"file": "poi/x.json", "category": "sight", "attribution": "..."}}],
 //  "roads": [{"id": "monaco", "name": "Monaco", "file": "roads/monaco.osm.gz", "attribution": "..."}]}
+//
+// "rules" (optional) clean the city's names and lines at import: store/metro_rules.hpp.
 
 #include "importer.hpp"
 

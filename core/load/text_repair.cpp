@@ -1,5 +1,7 @@
 #include "load/text_repair.hpp"
 
+#include "load/utf8.hpp"
+
 #include <array>
 #include <cstdint>
 #include <optional>
@@ -13,25 +15,6 @@ constexpr std::array<std::uint32_t, 32> kCp1252High = {
     0x20AC, 0,      0x201A, 0x0192, 0x201E, 0x2026, 0x2020, 0x2021, 0x02C6, 0x2030, 0x0160,
     0x2039, 0x0152, 0,      0x017D, 0,      0,      0x2018, 0x2019, 0x201C, 0x201D, 0x2022,
     0x2013, 0x2014, 0x02DC, 0x2122, 0x0161, 0x203A, 0x0153, 0,      0x017E, 0x0178};
-
-// Decodes one UTF-8 code point at s[i]; advances i. nullopt on malformed input.
-std::optional<std::uint32_t> decode(std::string_view s, std::size_t& i) {
-  auto b0 = static_cast<unsigned char>(s[i]);
-  int len = b0 < 0x80 ? 1 : (b0 >> 5) == 0x6 ? 2 : (b0 >> 4) == 0xE ? 3 : (b0 >> 3) == 0x1E ? 4 : 0;
-  if (len == 0 || i + len > s.size()) return std::nullopt;
-  std::uint32_t cp = len == 1 ? b0 : len == 2 ? (b0 & 0x1F) : len == 3 ? (b0 & 0x0F) : (b0 & 0x07);
-  for (int k = 1; k < len; ++k) {
-    auto b = static_cast<unsigned char>(s[i + k]);
-    if ((b >> 6) != 0x2) return std::nullopt;
-    cp = (cp << 6) | (b & 0x3F);
-  }
-  // Reject overlong forms and surrogates.
-  if ((len == 2 && cp < 0x80) || (len == 3 && cp < 0x800) || (len == 4 && (cp < 0x10000 || cp > 0x10FFFF)) ||
-      (cp >= 0xD800 && cp <= 0xDFFF))
-    return std::nullopt;
-  i += len;
-  return cp;
-}
 
 // The cp1252 byte that decodes to `cp`, if any.
 std::optional<unsigned char> cp1252_byte(std::uint32_t cp) {
@@ -47,7 +30,7 @@ std::optional<unsigned char> cp1252_byte(std::uint32_t cp) {
 
 bool is_valid_utf8(std::string_view s) {
   for (std::size_t i = 0; i < s.size();)
-    if (!decode(s, i)) return false;
+    if (!decode_utf8(s, i)) return false;
   return true;
 }
 
@@ -57,7 +40,7 @@ std::string repair_mojibake(std::string_view s) {
   std::string bytes;
   bool any_high = false;
   for (std::size_t i = 0; i < s.size();) {
-    auto cp = decode(s, i);
+    auto cp = decode_utf8(s, i);
     if (!cp) return std::string(s);
     auto b = cp1252_byte(*cp);
     if (!b) return std::string(s);  // a character cp1252 cannot hold: not mojibake

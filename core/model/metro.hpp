@@ -10,10 +10,20 @@
 
 namespace tourmap::model {
 
+// How a line's stroke is drawn beyond its colour, so lines of nearly the same colour on one map
+// can be told apart (metro/line_styles.hpp assigns it at import). Default: a plain stroke.
+struct LineStyle {
+  bool casing = false;       // outlined: a thin contrasting border on both sides of the stroke
+  std::vector<double> dash;  // on/off lengths in stroke widths, e.g. {2, 1}; empty: solid
+  bool plain() const { return !casing && dash.empty(); }
+  bool operator==(const LineStyle&) const = default;
+};
+
 struct MetroLine {
   std::string id;     // unique within the network
   std::string label;  // what riders read, e.g. "U2"
   std::string color;  // "rrggbb" without '#', empty when unknown
+  LineStyle style{};
 };
 
 struct MetroNode {
