@@ -59,7 +59,8 @@ TEST(LineStyles, LondonGreensAreCloseInTheDataAndApartInTfLColours) {
 model::MetroNetwork lines_with_colours(const std::vector<std::string>& colours, const std::vector<int>& edges) {
   model::MetroNetwork net;
   for (std::size_t l = 0; l < colours.size(); ++l) {
-    net.lines.push_back({"l" + std::to_string(l), "L" + std::to_string(l), colours[l]});
+    // (Appended rather than "l" + to_string: GCC 12 warns falsely about that operator+.)
+    net.lines.push_back({std::string("l").append(std::to_string(l)), std::string("L").append(std::to_string(l)), colours[l]});
     for (int e = 0; e < edges[l]; ++e) net.edges.push_back({0, 1, {static_cast<std::uint32_t>(l)}, {}});
   }
   return net;
