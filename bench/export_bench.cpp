@@ -104,7 +104,7 @@ int main(int argc, char** argv) {
               "fast). Scene: the layout answer's JSON read into the scene; draw: page layout and drawing. Best of %d "
               "runs, ms; sizes in KB.\n\n",
               svg_page.page_width, svg_page.page_height, dpi.c_str(), png_page.out_width, png_page.out_height, runs);
-  std::printf("| network | stations | lines | names shown | px/unit | scene ms | draw ms | SVG ms | SVG KB | PDF ms | PDF KB | PNG ms | PNG KB |\n");
+  std::printf("| network | stations | lines | names shown | px/m | scene ms | draw ms | SVG ms | SVG KB | PDF ms | PDF KB | PNG ms | PNG KB |\n");
   std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   for (const auto& m : manifest.metros) {
     const auto data = metro.data_for(m.city.id);

@@ -142,7 +142,7 @@ Text plain_text(Role role, const TextLine& line, double size_px, bool bold, Colo
 }
 
 void draw_frame(const MapScene& scene, const PageLayout& page, const MapStyle& style, const PageStyle& ps, Drawing& d) {
-  if (!page.title.text.empty()) d.items.push_back(plain_text(Role::title, page.title, ps.title_px, true, style.ink));
+  if (!page.title.text.empty()) d.items.push_back(plain_text(Role::title, page.title, page.title_px, true, style.ink));
   for (const auto& e : page.legend) {
     RoundedRect swatch;
     swatch.role = Role::legend;

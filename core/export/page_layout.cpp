@@ -164,8 +164,11 @@ PageLayout layout_page(const MapScene& scene, double width_px, double height_px,
   const double m = style.margin_px;
   const Box inner{m, m, width_px - m, height_px - m};
 
-  page.title = {scene.title, {m, m + style.title_px * 0.8}};
-  const double top = scene.title.empty() ? m : m + style.title_px + style.title_gap_px;
+  // A long name is set smaller to fit across (not below 12 px; a tiny page may still cut it).
+  const double title_em = metro::label_text_em(scene.title);
+  page.title_px = title_em > 0 ? std::clamp(inner.width() / title_em, 12.0, style.title_px) : style.title_px;
+  page.title = {scene.title, {m, m + page.title_px * 0.8}};
+  const double top = scene.title.empty() ? m : m + page.title_px + style.title_gap_px;
 
   // The attribution at the foot, all publishers on as few lines as fit.
   std::string credits;

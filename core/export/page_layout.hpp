@@ -64,6 +64,7 @@ struct TextLine {
 struct PageLayout {
   double width = 0, height = 0;
   TextLine title;
+  double title_px = 0;    // the title's size: the style's, smaller when the name is wider than the page
   Box map;                // the schematic's room
   Fit fit;
   int label_scale = -1;   // index into MapScene::label_scales; -1: no names fit this scale

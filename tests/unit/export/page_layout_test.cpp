@@ -1,6 +1,7 @@
 #include "export/page_layout.hpp"
 
 #include "export/line_sort.hpp"
+#include "metro/label_font.hpp"
 #include "export_test_scene.hpp"
 
 #include <gtest/gtest.h>
@@ -98,6 +99,16 @@ TEST(ExportPage, TitleLegendAndAttributionKeepClearOfTheMap) {
       EXPECT_LE(line.at.y, h);
     }
   }
+}
+
+TEST(ExportPage, ALongTitleIsSetSmallerToFit) {
+  auto scene = small_scene();
+  EXPECT_DOUBLE_EQ(layout_page(scene, 1200, 800).title_px, PageStyle{}.title_px);
+  scene.title = "Verkehrsverbund Rhein-Neckar Stadtbahn und S-Bahn Gesamtnetz";
+  const auto page = layout_page(scene, 600, 800);
+  EXPECT_LT(page.title_px, PageStyle{}.title_px);
+  EXPECT_LE(page.title.at.x + metro::label_text_em(scene.title) * page.title_px, 600 - PageStyle{}.margin_px + 1e-6);
+  EXPECT_LT(page.title.at.y, page.map.y0);
 }
 
 TEST(ExportPage, LegendGoesWhereTheMapGrowsLarger) {
