@@ -41,7 +41,7 @@ export function exportButton(target: ExportTarget): HTMLDetailsElement {
         return;
       }
       link.href = mapFileUrl(current.cityId, current.params, ext, query);
-      link.download = `${current.cityId}-metro-a3.${ext}`;  // the name the server gives it
+      link.download = `${current.cityId}-metro-a3.${ext}`; // the name the server gives it
     });
   };
   menu.addEventListener('toggle', refresh);
