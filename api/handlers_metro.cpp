@@ -1,5 +1,7 @@
-// The metro map endpoints (paper ch. 5): layout, visual worth, POI clusters.
+// The metro map endpoints (paper ch. 5): layout, visual worth, POI clusters, and the map as a
+// file (issue 14).
 
+#include "map_export.hpp"
 #include "routes.hpp"
 
 namespace tourmap::api {
@@ -13,6 +15,9 @@ void add_metro_routes(Router& router, AppContext& ctx) {
              [&ctx](Request& req) { return ctx.metro.visual_worth(req); });
   router.add("GET", "/api/v1/cities/{id}/clusters", Exec::heavy,
              [&ctx](Request& req) { return ctx.metro.clusters(req); });
+  for (auto format : {MapFormat::svg, MapFormat::pdf, MapFormat::png})
+    router.add("GET", std::string("/api/v1/cities/{id}/map.") + map_extension(format), Exec::heavy,
+               [&ctx, format](Request& req) { return serve_map(ctx.metro, req, format); });
 }
 
 }  // namespace tourmap::api

@@ -440,6 +440,8 @@ def main():
     put("handlers", "layout_get.txt", req("GET", "/api/v1/cities/fuzzville/layout?solver=fast&time_limit_s=1"))
     put("handlers", "layout_post.txt", req("POST", "/api/v1/cities/fuzzville/layout", compact(
         {"lengths": "uniform", "solver": "auto", "rank": "uniform", "time_limit_s": 1, "l_const": 20})))
+    put("handlers", "map_svg.txt", req("GET", "/api/v1/cities/fuzzville/map.svg?width=400&height=300&solver=fast&time_limit_s=1"))
+    put("handlers", "map_png.txt", req("GET", "/api/v1/cities/fuzzville/map.png?paper=a4&orientation=portrait&dpi=72&solver=fast&time_limit_s=1"))
     put("handlers", "visual_worth.txt", req("GET", "/api/v1/cities/fuzzville/visual-worth?width=16&height=8&k=300"))
     put("handlers", "clusters_geo.txt", req("GET", "/api/v1/cities/fuzzville/clusters?m=3"))
     put("handlers", "clusters_layout.txt", req("GET", "/api/v1/cities/fuzzville/clusters?space=layout&bbox=-1000,-1000,1000,1000&m=2&solver=fast&time_limit_s=1"))

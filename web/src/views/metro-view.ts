@@ -29,6 +29,7 @@ import { frameFor, type Frame } from '../map/projection';
 import { SvgMap, type Insets } from '../map/svg-map';
 import { ClusterLayer, type ClusterPick } from '../metro/cluster-layer';
 import { poiDetails, stationDetails, type DetailsContext } from '../metro/details';
+import { exportButton } from '../metro/export-button';
 import { HeatLayer } from '../metro/heat-layer';
 import { LatestRequest } from '../metro/latest-request';
 import { geoGrid, layoutGeometry, Placement, serverLabels } from '../metro/layout-geometry';
@@ -175,6 +176,7 @@ export class MetroView implements View {
         this.picker,
         this.summary,
         this.options.element,
+        exportButton(() => (this.city ? { cityId: this.city.id, params: this.layoutParams() } : null)),
       ),
       h(
         'div',
