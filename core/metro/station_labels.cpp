@@ -159,7 +159,7 @@ Text text_of(const std::string& name, const LabelStyle& style, bool two_lines) {
 class Placer {
  public:
   Placer(const LayoutGraph& g, const Layout& L, const StationLabelInput& in, const LabelStyle& style)
-      : g_(g), L_(L), in_(in), style_(style), neighbours_(g.pos.size()), degree_(g.pos.size(), 0) {
+      : g_(g), L_(L), style_(style), neighbours_(g.pos.size()), degree_(g.pos.size(), 0) {
     double total = 0;
     for (std::uint32_t e = 0; e < g.edges.size(); ++e) {
       const auto& path = L.paths[e];
@@ -416,7 +416,6 @@ class Placer {
 
   const LayoutGraph& g_;
   const Layout& L_;
-  const StationLabelInput& in_;
   LabelStyle style_;
   std::vector<Segment> segments_;
   std::vector<std::vector<std::uint32_t>> neighbours_;
