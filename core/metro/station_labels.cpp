@@ -313,7 +313,10 @@ class Placer {
   std::size_t max_lines() const { return max_lines_; }
 
   // Labels whose boxes meet r (ids into labels_).
-  std::vector<int> label_conflicts(const Rect& r) const {
+  // Labels whose boxes come within the names' gap of r (two names touching read as one).
+  std::vector<int> label_conflicts(const Rect& box) const {
+    const double gap = style_.label_gap_px / scale_;
+    const Rect r{box.x0 - gap, box.y0 - gap, box.x1 + gap, box.y1 + gap};
     std::vector<int> out;
     label_grid_.near(r, [&](int i) {
       if (labels_[static_cast<std::size_t>(i)].node != kRemoved && overlaps(r, label_rects_[static_cast<std::size_t>(i)]) &&

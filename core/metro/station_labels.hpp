@@ -35,6 +35,7 @@ struct LabelStyle {
   double line_spacing_px = 4;    // centre to centre of parallel lines (the client's)
   double line_width_px = 3.5;
   double clearance_px = 1;       // kept free around lines and symbols
+  double label_gap_px = 2;       // between two names (touching, "Cyprus" and "Gallions Reach" read as one)
   // A station symbol's radius grows with the zoom: this share of the mean edge on screen, within
   // [min, max] px. A symbol on a bundle of n lines reaches (n - 1) / 2 line spacings further.
   double symbol_share = 0.1, symbol_min_px = 3, symbol_max_px = 8;
