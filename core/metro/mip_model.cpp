@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <mutex>
 #include <stdexcept>
 
 namespace tourmap::metro {
@@ -149,6 +150,11 @@ MipResult deserialize_result(std::string_view bytes) {
 }
 
 MipResult solve_with_cbc(const MipModel& m, double time_limit_s, double relative_gap) {
+  // One in-process solve at a time: CBC's C interface runs its solver driver, which is not
+  // known to be safe from several threads (the server's layout MIPs run in child processes; the
+  // small line-order models of concurrent requests run here).
+  static std::mutex one_at_a_time;
+  const std::lock_guard<std::mutex> lock(one_at_a_time);
   // Column-major matrix for Cbc_loadProblem.
   std::size_t n = m.columns();
   std::vector<std::vector<std::pair<int, double>>> by_col(n);

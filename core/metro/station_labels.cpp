@@ -74,24 +74,40 @@ class Grid {
     for (auto& c : cells_) c.clear();
   }
   void add(const Rect& box, int item) {
-    for_cells(box, [&](std::size_t cell) { cells_[cell].push_back(item); });
+    for_cells(box, [&](std::size_t cell) {
+      cells_[cell].push_back(item);
+      return false;
+    });
   }
   template <typename F>
   void near(const Rect& box, F&& f) const {
     for_cells(box, [&](std::size_t cell) {
       for (int item : cells_[cell]) f(item);
+      return false;
+    });
+  }
+  // Whether `f` holds for an item near `box` (asked no further once it does).
+  template <typename F>
+  bool any(const Rect& box, F&& f) const {
+    return for_cells(box, [&](std::size_t cell) {
+      for (int item : cells_[cell])
+        if (f(item)) return true;
+      return false;
     });
   }
 
  private:
   std::int64_t col(double x) const { return std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((x - bounds_.x0) / cell_)), 0, cols_ - 1); }
   std::int64_t row(double y) const { return std::clamp<std::int64_t>(static_cast<std::int64_t>(std::floor((y - bounds_.y0) / cell_)), 0, rows_ - 1); }
+  // Calls f on the cells under box until it returns true; whether one did.
   template <typename F>
-  void for_cells(const Rect& box, F&& f) const {
-    if (cells_.empty()) return;
+  bool for_cells(const Rect& box, F&& f) const {
+    if (cells_.empty()) return false;
     const auto c0 = col(box.x0), c1 = col(box.x1), r0 = row(box.y0), r1 = row(box.y1);
     for (auto r = r0; r <= r1; ++r)
-      for (auto c = c0; c <= c1; ++c) f(static_cast<std::size_t>(r * cols_ + c));
+      for (auto c = c0; c <= c1; ++c)
+        if (f(static_cast<std::size_t>(r * cols_ + c))) return true;
+    return false;
   }
   Rect bounds_{0, 0, 0, 0};
   double cell_ = 1;
@@ -285,29 +301,25 @@ class Placer {
     return cost(v, c) + (l.slide != 0 ? kSlideCost : 0) + (two_line(c) ? kTwoLineCost : 0) + (far(c) ? kFarCost : 0);
   }
 
-  // Clear of lines and symbols (labels are checked separately).
+  // Clear of lines and symbols (labels are checked separately); stops at the first it meets.
   bool clear_of_map(const Rect& r) const {
     const double widest = (static_cast<double>(max_lines()) * style_.line_spacing_px / 2 + style_.clearance_px) / scale_;
     const Rect query{r.x0 - widest, r.y0 - widest, r.x1 + widest, r.y1 + widest};
-    bool clear = true;
-    segment_grid_.near(query, [&](int i) {
-      if (!clear) return;
+    const bool on_a_line = segment_grid_.any(query, [&](int i) {
       const auto& s = segments_[static_cast<std::size_t>(i)];
       const double half = (static_cast<double>(s.lines) * style_.line_spacing_px / 2 + style_.clearance_px) / scale_;
       // Boxes apart by more than the half width first: most segments near a label are.
       if (std::max(s.a.x, s.b.x) + half <= r.x0 || std::min(s.a.x, s.b.x) - half >= r.x1 ||
           std::max(s.a.y, s.b.y) + half <= r.y0 || std::min(s.a.y, s.b.y) - half >= r.y1)
-        return;
-      if (rect_segment_distance(r, s.a, s.b) < half) clear = false;
+        return false;
+      return rect_segment_distance(r, s.a, s.b) < half;
     });
-    if (!clear) return false;
+    if (on_a_line) return false;
     const double reach = (symbol_px_ + static_cast<double>(max_lines()) * style_.line_spacing_px + style_.clearance_px) / scale_;
-    symbol_grid_.near({r.x0 - reach, r.y0 - reach, r.x1 + reach, r.y1 + reach}, [&](int i) {
-      if (!clear) return;
+    return !symbol_grid_.any({r.x0 - reach, r.y0 - reach, r.x1 + reach, r.y1 + reach}, [&](int i) {
       const auto v = static_cast<std::uint32_t>(i);
-      if (rect_point_distance(r, L_.pos[v]) < (reach_px(v) + style_.clearance_px) / scale_) clear = false;
+      return rect_point_distance(r, L_.pos[v]) < (reach_px(v) + style_.clearance_px) / scale_;
     });
-    return clear;
   }
 
   std::size_t max_lines() const { return max_lines_; }
