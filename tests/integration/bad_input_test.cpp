@@ -1,39 +1,24 @@
 // Hostile and malformed requests: each gets a clear 4xx naming the field, and the server keeps
 // serving afterwards.
 
-#include "live_server.hpp"
+#include "live_server_suite.hpp"
 
 #include <gtest/gtest.h>
 
 namespace tourmap::test {
 namespace {
 
-class BadInput : public ::testing::Test {
+class BadInput : public LiveServerSuite<BadInput> {
+ public:
+  static std::vector<std::string> server_flags() { return {"--max-body", "65536", "--max-header", "8192"}; }
+
  protected:
-  static void SetUpTestSuite() { live = new LiveServer({"--max-body", "65536", "--max-header", "8192"}); }
-  static void TearDownTestSuite() {
-    delete live;
-    live = nullptr;
-  }
   void TearDown() override { EXPECT_EQ(live->get("/healthz").status, 200) << "server stopped serving"; }
 
   static HttpResult post_json(const std::string& target, const std::string& body) {
     return http_request(live->port(), "POST", target, {{"Content-Type", "application/json"}}, body);
   }
-  static LiveServer* live;
 };
-LiveServer* BadInput::live = nullptr;
-
-void expect_error(const HttpResult& r, int status, const std::string& field) {
-  EXPECT_EQ(r.status, status) << r.body;
-  auto err = error_of(r);
-  EXPECT_FALSE(err["code"].get<std::string>().empty());
-  EXPECT_FALSE(err["message"].get<std::string>().empty());
-  if (field.empty())
-    EXPECT_TRUE(err["field"].is_null()) << r.body;
-  else
-    EXPECT_EQ(err["field"], field) << r.body;
-}
 
 TEST_F(BadInput, UnknownIds) {
   expect_error(live->get("/api/v1/cities/atlantis"), 404, "id");

@@ -1,22 +1,23 @@
 // The deformation endpoints against a real server: the three applications, the methods, the
 // factorization cache while "dragging", and bad input.
 
-#include "live_server.hpp"
+#include "live_server_suite.hpp"
 
 #include <gtest/gtest.h>
 
 namespace tourmap::test {
 namespace {
 
-class DeformApi : public ::testing::Test {
+class DeformApi : public LiveServerSuite<DeformApi> {
  protected:
   static void SetUpTestSuite() {
-    live = new LiveServer();
+    LiveServerSuite::SetUpTestSuite();
     topology = new nlohmann::json(live->get_json("/api/v1/roads/west-oakland?format=topology"));
   }
   static void TearDownTestSuite() {
     delete topology;
-    delete live;
+    topology = nullptr;
+    LiveServerSuite::TearDownTestSuite();
   }
   static HttpResult post(const std::string& app, const nlohmann::json& body) {
     return http_request(live->port(), "POST", "/api/v1/deform/" + app, {{"Content-Type", "application/json"}},
@@ -42,18 +43,8 @@ class DeformApi : public ::testing::Test {
             {"regions", {{{"center", {lon, lat}}, {"radius_m", 300}, {"scale", 3}}}},
             {"output", {{"roads", "positions"}, {"grid", false}}}};
   }
-  static LiveServer* live;
-  static nlohmann::json* topology;
+  static inline nlohmann::json* topology = nullptr;
 };
-LiveServer* DeformApi::live = nullptr;
-nlohmann::json* DeformApi::topology = nullptr;
-
-void expect_error(const HttpResult& r, int status, const std::string& field) {
-  EXPECT_EQ(r.status, status) << r.body;
-  if (r.status >= 400) {
-    EXPECT_EQ(error_of(r)["field"], field) << r.body;
-  }
-}
 
 TEST_F(DeformApi, FocusMovesRoadsAndReportsStats) {
   auto out = ok("focus", {{"roads", "west-oakland"},

@@ -1,7 +1,7 @@
 // The map export (GET /api/v1/cities/{id}/map.svg|pdf|png) against a real server: formats,
 // sizes, the shared layout cache, revalidation and bad input.
 
-#include "live_server.hpp"
+#include "live_server_suite.hpp"
 
 #include <gtest/gtest.h>
 
@@ -13,23 +13,7 @@
 namespace tourmap::test {
 namespace {
 
-class MapExport : public ::testing::Test {
- protected:
-  static void SetUpTestSuite() { live = new LiveServer(); }
-  static void TearDownTestSuite() {
-    delete live;
-    live = nullptr;
-  }
-  static LiveServer* live;
-};
-LiveServer* MapExport::live = nullptr;
-
-void expect_error(const HttpResult& r, int status, const std::string& field) {
-  EXPECT_EQ(r.status, status) << r.body;
-  if (r.status >= 400) {
-    EXPECT_EQ(error_of(r)["field"], field) << r.body;
-  }
-}
+class MapExport : public LiveServerSuite<MapExport> {};
 
 std::pair<std::uint32_t, std::uint32_t> png_size(const std::string& png) {
   auto be32 = [&](std::size_t at) {

@@ -1,6 +1,6 @@
 // The metro map endpoints against a real server: layout, visual worth, clusters, bad input.
 
-#include "live_server.hpp"
+#include "live_server_suite.hpp"
 
 #include <gtest/gtest.h>
 
@@ -13,23 +13,7 @@
 namespace tourmap::test {
 namespace {
 
-class MetroApi : public ::testing::Test {
- protected:
-  static void SetUpTestSuite() { live = new LiveServer(); }
-  static void TearDownTestSuite() {
-    delete live;
-    live = nullptr;
-  }
-  static LiveServer* live;
-};
-LiveServer* MetroApi::live = nullptr;
-
-void expect_error(const HttpResult& r, int status, const std::string& field) {
-  EXPECT_EQ(r.status, status) << r.body;
-  if (r.status >= 400) {
-    EXPECT_EQ(error_of(r)["field"], field) << r.body;
-  }
-}
+class MetroApi : public LiveServerSuite<MetroApi> {};
 
 // Horizontal, vertical or diagonal up to the 1 mm rounding of the layout coordinates (each end
 // off by up to 0.5 mm per axis, so |dx|, |dy| or their difference may be off by 1 mm), and

@@ -1,7 +1,7 @@
 // Per-client rate limiting (429 with Retry-After) and the CORS allow-list, against a real
 // server. The tests run from 127.0.0.1, so they all share one client address.
 
-#include "live_server.hpp"
+#include "live_server_suite.hpp"
 
 #include <gtest/gtest.h>
 
@@ -17,15 +17,13 @@ const std::string kAllowed = "https://maps.example.org";
 const std::string kOther = "https://elsewhere.example.net";
 
 // --rate-limit 5 --rate-burst 5: a client may make 5 requests at once, then one every 0.2 s.
-class RateLimit : public ::testing::Test {
+class RateLimit : public LiveServerSuite<RateLimit> {
+ public:
+  static std::vector<std::string> server_flags() {
+    return {"--rate-limit", "5", "--rate-burst", "5", "--cors-origins", kAllowed};
+  }
+
  protected:
-  static void SetUpTestSuite() {
-    live = new LiveServer({"--rate-limit", "5", "--rate-burst", "5", "--cors-origins", kAllowed});
-  }
-  static void TearDownTestSuite() {
-    delete live;
-    live = nullptr;
-  }
   // Every test starts with a full bucket (5 tokens come back in 1 s).
   void SetUp() override { std::this_thread::sleep_for(1100ms); }
 
@@ -41,9 +39,7 @@ class RateLimit : public ::testing::Test {
     }
     return -1;
   }
-  static LiveServer* live;
 };
-LiveServer* RateLimit::live = nullptr;
 
 TEST_F(RateLimit, BurstPassesThenTooManyRequestsWithRetryAfter) {
   const auto start = Clock::now();
@@ -116,25 +112,20 @@ TEST_F(RateLimit, RefusalsCarryCorsHeadersForAnAllowedOrigin) {
 
 // CORS with an allow-list and no rate limit (--rate-limit 0; with a burst of 1 any limit would
 // refuse the second request).
-class CorsLive : public ::testing::Test {
+class CorsLive : public LiveServerSuite<CorsLive> {
+ public:
+  static std::vector<std::string> server_flags() {
+    return {"--cors-origins", kAllowed + ", http://localhost:5173", "--rate-limit", "0", "--rate-burst", "1"};
+  }
+
  protected:
-  static void SetUpTestSuite() {
-    live = new LiveServer(
-        {"--cors-origins", kAllowed + ", http://localhost:5173", "--rate-limit", "0", "--rate-burst", "1"});
-  }
-  static void TearDownTestSuite() {
-    delete live;
-    live = nullptr;
-  }
   static HttpResult preflight(const std::string& origin, const std::string& target = "/api/v1/cities/vienna/pois/query") {
     return http_request(live->port(), "OPTIONS", target,
                         {{"Origin", origin},
                          {"Access-Control-Request-Method", "POST"},
                          {"Access-Control-Request-Headers", "content-type"}});
   }
-  static LiveServer* live;
 };
-LiveServer* CorsLive::live = nullptr;
 
 TEST_F(CorsLive, AllowedOriginGetsTheHeader) {
   auto r = live->get("/api/v1/cities", {{"Origin", kAllowed}});

@@ -1,6 +1,6 @@
 // The read API against a real server: cities, metro, POIs, roads, caching and compression.
 
-#include "live_server.hpp"
+#include "live_server_suite.hpp"
 
 #include "server/gzip.hpp"
 
@@ -9,16 +9,7 @@
 namespace tourmap::test {
 namespace {
 
-class ReadApi : public ::testing::Test {
- protected:
-  static void SetUpTestSuite() { live = new LiveServer(); }
-  static void TearDownTestSuite() {
-    delete live;
-    live = nullptr;
-  }
-  static LiveServer* live;
-};
-LiveServer* ReadApi::live = nullptr;
+class ReadApi : public LiveServerSuite<ReadApi> {};
 
 TEST_F(ReadApi, HealthzAndIndex) {
   auto health = live->get_json("/healthz");
