@@ -413,6 +413,8 @@ int main(int argc, char** argv) {
       if (unlabelled_at > 0) {
         for (std::size_t k = 0; k < r.labels.size(); ++k) {
           if (metro::kLabelMeanEdgesPx[k] != unlabelled_at) continue;
+          std::printf("%s %s: %zu unnamed at %.0f px, %zu with no place clear of lines and symbols\n", ref.network,
+                      req.name, r.labels[k].unlabelled, unlabelled_at, r.labels[k].no_room);
           std::vector<bool> has(in.names.size(), false);
           for (const auto& l : r.labels[k].labels) has[l.node] = true;
           for (std::size_t v = 0; v < in.names.size(); ++v)

@@ -254,7 +254,10 @@ class Placer {
     // Repair: a station left out may take a place held by one neighbour's label that can move.
     std::size_t unlabelled = 0;
     for (auto v : left_out)
-      if (!repair(v)) ++unlabelled;
+      if (!repair(v)) {
+        ++unlabelled;
+        if (!has_room(v)) ++out.no_room;
+      }
     for (const auto& l : labels_)
       if (l.node != kRemoved) out.labels.push_back(l);
     out.unlabelled = unlabelled;
@@ -375,6 +378,13 @@ class Placer {
     auto conflicts = label_conflicts(r);
     conflicts.erase(std::remove(conflicts.begin(), conflicts.end(), except_label), conflicts.end());
     return conflicts.empty() && clear_of_map(r);
+  }
+
+  // Whether any place of v is clear of lines and symbols (the names aside).
+  bool has_room(std::uint32_t v) const {
+    for (int c = 0; c < kCandidates; ++c)
+      if (valid(v, c) && clear_of_map(rect_of(v, candidate(v, c)))) return true;
+    return false;
   }
 
   // The cheapest free candidate of v, or -1.

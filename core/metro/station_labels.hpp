@@ -59,6 +59,7 @@ struct LabelScale {
   double symbol_px = 0;         // the symbols' radius the placement kept clear of
   std::vector<PlacedLabel> labels;
   std::size_t unlabelled = 0;   // named stations without a label at this scale
+  std::size_t no_room = 0;      // of those, how many have no place clear of lines and symbols
 };
 
 struct StationLabelInput {
