@@ -13,7 +13,7 @@
 namespace tourmap::api {
 namespace {
 
-constexpr int kLayoutVersion = 8;  // 6: bend reduction, quality.compare (the metric tool's figures); 7: clearance in the bend reduction; 8: detour limit in the router, spacing with cuts, mm coordinates, line order
+constexpr int kLayoutVersion = 9;  // 6: bend reduction, quality.compare (the metric tool's figures); 7: clearance in the bend reduction; 8: detour limit in the router, spacing with cuts, mm coordinates, line order; 9: names on leaders
 using util::Clock;
 using util::ms_since;
 
@@ -104,7 +104,8 @@ double round_px(double v) { return std::round(v * 10) / 10; }
 // Station names per zoom (metro/station_labels.hpp). Each label is [station index (into the
 // stations' features), x0, y0, x1, y1 (its box), text x, text y (the first line's baseline),
 // anchor ("s", "m", "e"), split (byte where the second line begins, 0: one line)], in px from
-// the station's point, x right and y down.
+// the station's point, x right and y down; a name set off on a leader has four more numbers:
+// the leader from (x, y) at the symbol's rim to (x, y) at the box.
 nlohmann::json labels_json(const metro::CityLayoutResult& L, const std::vector<int>& station_index, double metres_per_unit) {
   const metro::LabelStyle style;
   double mean_unit = 0;
@@ -116,13 +117,17 @@ nlohmann::json labels_json(const metro::CityLayoutResult& L, const std::vector<i
     nlohmann::json labels = nlohmann::json::array();
     for (const auto& l : scale.labels) {
       if (station_index[l.node] < 0) continue;
-      labels.push_back({station_index[l.node], round_px(l.x0), round_px(l.y0), round_px(l.x1), round_px(l.y1),
-                        round_px(l.text_x), round_px(l.text_y), std::string(1, l.anchor), l.split});
+      nlohmann::json label = {station_index[l.node], round_px(l.x0), round_px(l.y0), round_px(l.x1), round_px(l.y1),
+                              round_px(l.text_x), round_px(l.text_y), std::string(1, l.anchor), l.split};
+      if (l.leader)
+        for (double v : {l.lx0, l.ly0, l.lx1, l.ly1}) label.push_back(round_px(v));
+      labels.push_back(std::move(label));
     }
     scales.push_back({{"mean_edge_px", scale.mean_edge_px},
                       {"px_per_m", scale.px_per_unit / metres_per_unit},
                       {"symbol_px", scale.symbol_px},
                       {"unlabelled", scale.unlabelled},
+                      {"leaders", scale.leaders},
                       {"labels", std::move(labels)}});
   }
   return {{"font", {{"family", metro::kLabelFontFamily}, {"weight", "bold"}, {"size_px", style.font_px}, {"line_px", style.line_px}}},

@@ -25,10 +25,12 @@
 
 #include "load/file.hpp"
 #include "load/metro_load.hpp"
+#include "load/name_rules.hpp"
 #include "load/poi_load.hpp"
 #include "metro/city_layout.hpp"
 #include "metro/layout_metrics.hpp"
 #include "metro_variants.hpp"
+#include "store/metro_rules.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -78,6 +80,14 @@ City load_city(const nlohmann::json& entry, const std::string& data_dir) {
   if (format == "loom") c.net = load::load_metro_loom(files.at(0));
   else if (format == "station-csvs") c.net = load::load_metro_station_csvs(files.at(0), files.at(1), files.at(2));
   else c.net = load::load_metro_line_csv(files.at(0));
+  // The names as users see them (the manifest's name rules); every line kept, so that the
+  // written layouts match metro_compare.py's input (the import hides construction lines).
+  if (metro.contains("rules")) {
+    auto rules = store::parse_metro_rules(metro["rules"], "metro.rules");
+    rules.hide_lines.clear();
+    rules.lines.clear();
+    load::apply_metro_rules(c.net, rules);
+  }
   if (entry.contains("pois"))
     c.pois = load::load_pois(data_dir + "/" + entry["pois"].at("file").get<std::string>(),
                              {entry["pois"].value("category", "")});
@@ -413,8 +423,9 @@ int main(int argc, char** argv) {
       if (unlabelled_at > 0) {
         for (std::size_t k = 0; k < r.labels.size(); ++k) {
           if (metro::kLabelMeanEdgesPx[k] != unlabelled_at) continue;
-          std::printf("%s %s: %zu unnamed at %.0f px, %zu with no place clear of lines and symbols\n", ref.network,
-                      req.name, r.labels[k].unlabelled, unlabelled_at, r.labels[k].no_room);
+          std::printf("%s %s: %zu unnamed at %.0f px, %zu with no place clear of lines and symbols; %zu names on a leader\n",
+                      ref.network, req.name, r.labels[k].unlabelled, unlabelled_at, r.labels[k].no_room,
+                      r.labels[k].leaders);
           std::vector<bool> has(in.names.size(), false);
           for (const auto& l : r.labels[k].labels) has[l.node] = true;
           for (std::size_t v = 0; v < in.names.size(); ++v)

@@ -109,7 +109,16 @@ std::vector<std::string> label_lines(const std::string& name, std::size_t split)
 void draw_labels(const MapScene& scene, const PageLayout& page, const MapStyle& style, Drawing& d) {
   if (page.label_scale < 0) return;
   const auto& st = scene.label_style;
-  for (const auto& l : scene.label_scales[static_cast<std::size_t>(page.label_scale)].labels) {
+  const auto& placed = scene.label_scales[static_cast<std::size_t>(page.label_scale)].labels;
+  // Leaders first, under the names' halos.
+  Strokes leaders{Role::label, {}, style.ink, style.leader_width_px};
+  for (const auto& l : placed) {
+    if (!l.leader || l.node >= scene.nodes.size() || scene.nodes[l.node].name.empty()) continue;
+    const XY at = to_page(page.fit, scene.nodes[l.node].pos);
+    leaders.paths.push_back({{at.x + l.lx0, at.y + l.ly0}, {at.x + l.lx1, at.y + l.ly1}});
+  }
+  if (!leaders.paths.empty()) d.items.push_back(std::move(leaders));
+  for (const auto& l : placed) {
     if (l.node >= scene.nodes.size() || scene.nodes[l.node].name.empty()) continue;
     const XY at = to_page(page.fit, scene.nodes[l.node].pos);
     Text t;

@@ -22,6 +22,7 @@ struct MapStyle {
   double interchange_outline_px = 2.2;  // in ink
   double label_halo_px = 3;
   double label_halo_alpha = 0.9;
+  double leader_width_px = 1;        // a name set off from its symbol (in ink)
   double swatch_radius_px = 3;
 };
 

@@ -45,6 +45,8 @@ struct SceneLabel {
   double text_x = 0, text_y = 0;          // the anchor on the first line's baseline
   char anchor = 's';                      // 's' start, 'm' middle, 'e' end
   std::size_t split = 0;                  // byte where a second line begins (0: one line)
+  bool leader = false;                    // set off on a leader from (lx0, ly0) to (lx1, ly1)
+  double lx0 = 0, ly0 = 0, lx1 = 0, ly1 = 0;
 };
 
 // The placement made for one scale: valid at that scale and every larger one.

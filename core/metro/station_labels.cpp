@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <numbers>
 #include <numeric>
 #include <unordered_map>
 
@@ -57,6 +58,28 @@ double rect_segment_distance(const Rect& r, XY a, XY b) {
   double best = std::min(rect_point_distance(r, a), rect_point_distance(r, b));
   for (const auto& corner : c) best = std::min(best, point_segment_distance(corner, a, b));
   return best;
+}
+
+Rect expanded(const Rect& r, double d) { return {r.x0 - d, r.y0 - d, r.x1 + d, r.y1 + d}; }
+
+// A label's leader in layout units (none: `on` false).
+struct Leader {
+  XY a{0, 0}, b{0, 0};
+  bool on = false;
+};
+
+Rect bounds_with(const Rect& r, const Leader& l) {
+  if (!l.on) return r;
+  return {std::min({r.x0, l.a.x, l.b.x}), std::min({r.y0, l.a.y, l.b.y}), std::max({r.x1, l.a.x, l.b.x}),
+          std::max({r.y1, l.a.y, l.b.y})};
+}
+
+bool segments_meet(XY a, XY b, XY c, XY d) { return segment_contact(a, b, c, d, 0).kind != SegmentContact::none; }
+
+double segment_distance(XY a, XY b, XY c, XY d) {
+  if (segments_meet(a, b, c, d)) return 0;
+  return std::min({point_segment_distance(a, c, d), point_segment_distance(b, c, d), point_segment_distance(c, a, b),
+                   point_segment_distance(d, a, b)});
 }
 
 // A uniform grid over the layout's bounds, cells in one array (a hash of cells was a tenth of
@@ -125,6 +148,8 @@ struct Segment {
 constexpr std::array<double, 8> kPlaceCost = {0.0, 0.3, 0.6, 0.4, 0.1, 0.45, 0.65, 0.35};
 constexpr double kSlideCost = 0.15, kTwoLineCost = 0.25, kFarCost = 0.2;
 constexpr double kSameSideBonus = 0.5;  // the side a neighbour on the line took
+// Off the sixteen places (any angle: reads a little worse), and each leader step further out.
+constexpr double kRingCost = 2.0, kLeaderStepCost = 1.5;
 
 // A name's text: its width, and where it breaks onto two lines (0: it does not).
 struct Text {
@@ -159,14 +184,46 @@ PlacedLabel place_box(std::uint32_t node, int p, int slide, const Text& t, doubl
   return l;
 }
 
+// The label of text `t` touching, at `angle_deg` (counter-clockwise from east), the circle of
+// radius `ring` px around the point, `extra` px further out: a box whose corner meets the
+// circle on the diagonals and that slides along it between them (as the sixteen places do, but
+// at any angle). Beyond the ring (`extra` > 0) a leader joins it to the symbol's rim at `reach`.
+PlacedLabel ring_box(std::uint32_t node, double angle_deg, double extra, const Text& t, double ring, double reach,
+                     const LabelStyle& s) {
+  const double w = t.width, h = s.height_px + (t.split ? s.line_px : 0);
+  const double a = angle_deg * std::numbers::pi / 180, fx = std::cos(a), fy = -std::sin(a), r = ring + extra;
+  // Beyond |f| = 0.38 (about 22.5 degrees off an axis) the box sits wholly on that side.
+  constexpr double kSide = 0.38;
+  const double sx = std::clamp(fx / kSide, -1.0, 1.0), sy = std::clamp(fy / kSide, -1.0, 1.0);
+  const int side = static_cast<int>(std::lround(angle_deg / 45.0)) % 8;
+  PlacedLabel l{node, side, 0, 0, 0, 0, 0, 0, 0, 's', t.split};
+  l.x0 = r * fx + (sx - 1) * w / 2;
+  l.y0 = r * fy + (sy - 1) * h / 2;
+  l.x1 = l.x0 + w;
+  l.y1 = l.y0 + h;
+  l.anchor = sx >= 1 ? 's' : sx <= -1 ? 'e' : 'm';
+  l.text_x = l.anchor == 's' ? l.x0 : l.anchor == 'e' ? l.x1 : (l.x0 + l.x1) / 2;
+  l.text_y = l.y0 + s.height_px / 2 + 0.35 * s.font_px;
+  if (extra > 0) {
+    // From the rim towards the box's nearest point.
+    const double ex = std::clamp(0.0, l.x0, l.x1), ey = std::clamp(0.0, l.y0, l.y1), len = std::hypot(ex, ey);
+    l.leader = true;
+    l.lx0 = ex / len * reach, l.ly0 = ey / len * reach, l.lx1 = ex, l.ly1 = ey;
+  }
+  return l;
+}
+
 // Where a name of several words breaks most evenly onto two lines (0: one word).
 Text text_of(const std::string& name, const LabelStyle& style, bool two_lines) {
   const double whole = label_width_px(name, style);
   if (!two_lines) return {whole, 0};
   Text best{whole, 0};
   for (std::size_t i = 1; i + 1 < name.size(); ++i) {
-    if (name[i] != ' ') continue;
-    const double w = std::max(label_width_px(name.substr(0, i), style), label_width_px(name.substr(i + 1), style));
+    // After a space (dropped) or a hyphen (kept on the first line: "Mendelssohn-/Bartholdy-Park").
+    const bool hyphen = name[i] == '-' && name[i - 1] != ' ' && name[i + 1] != ' ';  // not " - "
+    if (name[i] != ' ' && !hyphen) continue;
+    const std::size_t first = name[i] == ' ' ? i : i + 1;
+    const double w = std::max(label_width_px(name.substr(0, first), style), label_width_px(name.substr(i + 1), style));
     if (w < best.width) best = {w, i + 1};
   }
   return best;
@@ -237,10 +294,12 @@ class Placer {
     out.px_per_unit = mean_edge_px / mean_;
     out.symbol_px = symbol_px;
     scale_ = out.px_per_unit;
+    ring_ = mean_edge_px >= style_.ring_min_mean_edge_px;
     symbol_px_ = symbol_px;
     labels_.clear();
     candidate_.clear();
     label_rects_.clear();
+    leaders_.clear();
     placed_.assign(g_.pos.size(), -1);
     if (label_grid_cells_ != grid_cell_) {
       label_grid_ = Grid(bounds_, grid_cell_);
@@ -259,7 +318,10 @@ class Placer {
         if (!has_room(v)) ++out.no_room;
       }
     for (const auto& l : labels_)
-      if (l.node != kRemoved) out.labels.push_back(l);
+      if (l.node != kRemoved) {
+        out.labels.push_back(l);
+        if (l.leader) ++out.leaders;
+      }
     out.unlabelled = unlabelled;
     return out;
   }
@@ -278,30 +340,61 @@ class Placer {
     const XY p = L_.pos[v];
     return {p.x + l.x0 / scale_, p.y - l.y1 / scale_, p.x + l.x1 / scale_, p.y - l.y0 / scale_};
   }
+  Leader leader_of(std::uint32_t v, const PlacedLabel& l) const {
+    if (!l.leader) return {};
+    const XY p = L_.pos[v];
+    return {{p.x + l.lx0 / scale_, p.y - l.ly0 / scale_}, {p.x + l.lx1 / scale_, p.y - l.ly1 / scale_}, true};
+  }
 
-  // Candidate c: c % 16 the place (the 8 sides, then E, W, N, S slid to one side and to the
-  // other); (c / 16) % 2 two lines of text; c / 32 half a line further out (off the lines of an
-  // interchange whose diagonals pass close to the nearer places).
-  static constexpr int kCandidates = 64;
-  static bool two_line(int c) { return (c / 16) % 2 == 1; }
-  static bool far(int c) { return c >= 32; }
+  // Candidate c < kPlaces: c % 16 the place (the 8 sides, then E, W, N, S slid to one side and
+  // to the other); (c / 16) % 2 two lines of text; c / 32 half a line further out (off the
+  // lines of an interchange whose diagonals pass close to the nearer places). Beyond: the ring,
+  // kRingAngles angles, on one line or two, at kRingLevels distances (0: touching the places'
+  // ring; then leader steps further out). The ring is tried only after every place.
+  static constexpr int kPlaces = 64, kRingAngles = 48, kRingLevels = 4;
+  static constexpr int kCandidates = kPlaces + kRingAngles * 2 * kRingLevels;
+  static bool on_ring(int c) { return c >= kPlaces; }
+  static int ring_level(int c) { return on_ring(c) ? (c - kPlaces) / (2 * kRingAngles) : 0; }
+  static bool two_line(int c) { return on_ring(c) ? (c - kPlaces) / kRingAngles % 2 == 1 : (c / 16) % 2 == 1; }
+  static bool far(int c) { return !on_ring(c) && c >= 32; }
+  static double ring_angle_deg(int c) { return (c - kPlaces) % kRingAngles * (360.0 / kRingAngles); }
   PlacedLabel candidate(std::uint32_t v, int c) const {
+    const Text& t = two_line(c) ? two_lines_[v] : one_line_[v];
+    const double ring = reach_px(v) + style_.gap_px;
+    if (on_ring(c)) return ring_box(v, ring_angle_deg(c), ring_level(c) * style_.leader_step_px, t, ring, reach_px(v), style_);
     const int place = c % 16;
     const int side = candidate_side(c);
     const int slide = place < 8 ? 0 : (place % 2 ? 1 : -1);
-    const Text& t = two_line(c) ? two_lines_[v] : one_line_[v];
     // The lane a slid label keeps clear of: half the widest bundle through v, and clearance.
     const auto it = bundle_.find(v);
     const double n = it == bundle_.end() ? 1.0 : static_cast<double>(it->second);
     const double lane = n * style_.line_spacing_px / 2 + style_.clearance_px + 1;
-    const double out = reach_px(v) + style_.gap_px + (far(c) ? style_.height_px / 2 : 0);
-    return place_box(v, side, slide, t, out, lane, style_);
+    return place_box(v, side, slide, t, ring + (far(c) ? style_.height_px / 2 : 0), lane, style_);
   }
   bool has_two_lines(std::uint32_t v) const { return two_lines_[v].split != 0; }
-  bool valid(std::uint32_t v, int c) const { return !two_line(c) || has_two_lines(v); }
+  bool valid(std::uint32_t v, int c) const { return (!two_line(c) || has_two_lines(v)) && (ring_ || !on_ring(c)); }
   double candidate_cost(std::uint32_t v, int c) const {
     const auto l = candidate(v, c);
-    return cost(v, c) + (l.slide != 0 ? kSlideCost : 0) + (two_line(c) ? kTwoLineCost : 0) + (far(c) ? kFarCost : 0);
+    const double ring = on_ring(c) ? kRingCost + ring_level(c) * kLeaderStepCost : 0;
+    return cost(v, c) + ring + (l.slide != 0 ? kSlideCost : 0) + (two_line(c) ? kTwoLineCost : 0) + (far(c) ? kFarCost : 0);
+  }
+
+  // A leader keeps clear of lines and of every symbol but its own.
+  bool leader_clear(std::uint32_t v, const Leader& l) const {
+    if (!l.on) return true;
+    const double widest = (static_cast<double>(max_lines()) * style_.line_spacing_px / 2 + style_.clearance_px) / scale_;
+    const Rect query = expanded(bounds_with({l.a.x, l.a.y, l.a.x, l.a.y}, l), widest);
+    const bool on_a_line = segment_grid_.any(query, [&](int i) {
+      const auto& s = segments_[static_cast<std::size_t>(i)];
+      const double half = (static_cast<double>(s.lines) * style_.line_spacing_px / 2 + style_.clearance_px) / scale_;
+      return segment_distance(l.a, l.b, s.a, s.b) < half;
+    });
+    if (on_a_line) return false;
+    const double reach = (symbol_px_ + static_cast<double>(max_lines()) * style_.line_spacing_px + style_.clearance_px) / scale_;
+    return !symbol_grid_.any(expanded(query, reach), [&](int i) {
+      const auto u = static_cast<std::uint32_t>(i);
+      return u != v && point_segment_distance(L_.pos[u], l.a, l.b) < (reach_px(u) + style_.clearance_px) / scale_;
+    });
   }
 
   // Clear of lines and symbols (labels are checked separately); stops at the first it meets.
@@ -327,16 +420,20 @@ class Placer {
 
   std::size_t max_lines() const { return max_lines_; }
 
-  // Labels whose boxes meet r (ids into labels_).
-  // Labels whose boxes come within the names' gap of r (two names touching read as one).
-  std::vector<int> label_conflicts(const Rect& box) const {
+  // Labels (ids into labels_) whose boxes come within the names' gap of `box` (two names
+  // touching read as one), or whose leaders cross it or the leader `lead`, or are crossed by it.
+  std::vector<int> label_conflicts(const Rect& box, const Leader& lead) const {
     const double gap = style_.label_gap_px / scale_;
-    const Rect r{box.x0 - gap, box.y0 - gap, box.x1 + gap, box.y1 + gap};
+    const Rect r = expanded(box, gap);
     std::vector<int> out;
-    label_grid_.near(r, [&](int i) {
-      if (labels_[static_cast<std::size_t>(i)].node != kRemoved && overlaps(r, label_rects_[static_cast<std::size_t>(i)]) &&
-          std::find(out.begin(), out.end(), i) == out.end())
-        out.push_back(i);
+    label_grid_.near(bounds_with(r, lead), [&](int i) {
+      const auto k = static_cast<std::size_t>(i);
+      if (labels_[k].node == kRemoved || std::find(out.begin(), out.end(), i) != out.end()) return;
+      const Leader& other = leaders_[k];
+      const bool hit = overlaps(r, label_rects_[k]) || (other.on && crosses(r, other.a, other.b)) ||
+                       (lead.on && crosses(expanded(label_rects_[k], gap), lead.a, lead.b)) ||
+                       (lead.on && other.on && segments_meet(lead.a, lead.b, other.a, other.b));
+      if (hit) out.push_back(i);
     });
     return out;
   }
@@ -350,20 +447,21 @@ class Placer {
     for (auto w : neighbours_[v]) {
       if (placed_[w] < 0) continue;
       const int other = candidate_[static_cast<std::size_t>(placed_[w])];
-      if (other % 16 == c % 16) bonus = std::max(bonus, kSameSideBonus);
+      if (!on_ring(other) && !on_ring(c) && other % 16 == c % 16) bonus = std::max(bonus, kSameSideBonus);
       else if (candidate_side(other) == p) bonus = std::max(bonus, kSameSideBonus / 2);
     }
     return cost - bonus;
   }
   static int candidate_side(int c) {
+    if (on_ring(c)) return static_cast<int>(std::lround(ring_angle_deg(c) / 45.0)) % 8;
     const int place = c % 16;
     return place < 8 ? place : 2 * ((place - 8) / 2);
   }
 
-  // v's candidates, cheapest first.
-  std::vector<int> ranked_candidates(std::uint32_t v) const {
+  // v's candidates in [from, to), cheapest first.
+  std::vector<int> ranked_candidates(std::uint32_t v, int from, int to) const {
     std::vector<std::pair<double, int>> ranked;
-    for (int c = 0; c < kCandidates; ++c) {
+    for (int c = from; c < to; ++c) {
       if (!valid(v, c)) continue;
       ranked.push_back({candidate_cost(v, c), c});
     }
@@ -374,22 +472,34 @@ class Placer {
   }
 
   bool free(std::uint32_t v, int c, int except_label = -1) const {
-    const Rect r = rect_of(v, candidate(v, c));
-    auto conflicts = label_conflicts(r);
+    const auto l = candidate(v, c);
+    const Rect r = rect_of(v, l);
+    const Leader lead = leader_of(v, l);
+    auto conflicts = label_conflicts(r, lead);
     conflicts.erase(std::remove(conflicts.begin(), conflicts.end(), except_label), conflicts.end());
-    return conflicts.empty() && clear_of_map(r);
+    return conflicts.empty() && clear_of_map(r) && leader_clear(v, lead);
+  }
+
+  // Whether candidate c of v is clear of lines and symbols (the names aside).
+  bool clear_of_map(std::uint32_t v, int c) const {
+    const auto l = candidate(v, c);
+    return clear_of_map(rect_of(v, l)) && leader_clear(v, leader_of(v, l));
   }
 
   // Whether any place of v is clear of lines and symbols (the names aside).
   bool has_room(std::uint32_t v) const {
     for (int c = 0; c < kCandidates; ++c)
-      if (valid(v, c) && clear_of_map(rect_of(v, candidate(v, c)))) return true;
+      if (valid(v, c) && clear_of_map(v, c)) return true;
     return false;
   }
 
-  // The cheapest free candidate of v, or -1.
+  // The cheapest free candidate of v, or -1. Every place costs less than any ring candidate
+  // (kRingCost), so the ring is ranked only when no place is free.
   int best_free(std::uint32_t v) const {
-    for (int c : ranked_candidates(v))
+    for (int c : ranked_candidates(v, 0, kPlaces))
+      if (free(v, c)) return c;
+    if (!ring_) return -1;
+    for (int c : ranked_candidates(v, kPlaces, kCandidates))
       if (free(v, c)) return c;
     return -1;
   }
@@ -400,7 +510,8 @@ class Placer {
     labels_.push_back(l);
     candidate_.push_back(c);
     label_rects_.push_back(rect_of(v, l));
-    label_grid_.add(label_rects_.back(), id);
+    leaders_.push_back(leader_of(v, l));
+    label_grid_.add(bounds_with(label_rects_.back(), leaders_.back()), id);
     placed_[v] = id;
   }
 
@@ -420,9 +531,9 @@ class Placer {
   bool repair(std::uint32_t v) {
     for (int p = 0; p < kCandidates; ++p) {
       if (!valid(v, p)) continue;
-      const Rect r = rect_of(v, candidate(v, p));
-      const auto conflicts = label_conflicts(r);
-      if (conflicts.size() != 1 || !clear_of_map(r)) continue;
+      const auto l = candidate(v, p);
+      const auto conflicts = label_conflicts(rect_of(v, l), leader_of(v, l));
+      if (conflicts.size() != 1 || !clear_of_map(v, p)) continue;
       const int other = conflicts.front();
       const auto w = labels_[static_cast<std::size_t>(other)].node;
       const int old_place = candidate_[static_cast<std::size_t>(other)];
@@ -455,9 +566,11 @@ class Placer {
   double label_grid_cells_ = 0;
   // Per scale:
   double scale_ = 1, symbol_px_ = 0;
+  bool ring_ = false;  // the ring and leaders in use
   std::vector<PlacedLabel> labels_;
   std::vector<int> candidate_;  // per label: the candidate it is
   std::vector<Rect> label_rects_;
+  std::vector<Leader> leaders_;  // per label
   std::vector<int> placed_;
 };
 

@@ -3,12 +3,16 @@
 // export. A label is a box of the name's width (metro/label_font.hpp) in one of sixteen places
 // around its station's symbol: east, north-east, ..., south-east, and beside a line leaving
 // east, west, north or south (slid off it to either side), on one line of text or, for a name
-// of several words, on two (split where the halves are most even). Labels keep clear of each
-// other, of every line (a bundle of n lines is n * line spacing wide), and of every station's
+// of several words, on two (split after the space or hyphen that makes the halves most even).
+// Labels keep clear of each other, of every line (a bundle of n lines is n * line spacing wide), and of every station's
 // symbol. Interchanges and termini are named first, then by priority; a label takes the free
 // place that reads best (east first, then west, the diagonals, north and south) and prefers
-// the side its neighbour on the line took. A second pass names a station left out by moving
-// one neighbour's label to another free place.
+// the side its neighbour on the line took. Where none of those places is free (a dense centre),
+// the name may sit anywhere around the symbol (a box touching the ring of its sixteen places at
+// one of 48 angles), and last of all a little further out, joined to the symbol by a thin
+// leader that keeps clear of lines, symbols and other names (a callout, as map makers use in
+// crowded areas). A second pass names a station left out by moving one neighbour's label to
+// another free place.
 //
 // Label sizes are pixels and the map zooms, so a placement is made per scale (px per layout
 // unit). One made at a scale stays clear at every larger one (positions spread, boxes keep
@@ -36,6 +40,10 @@ struct LabelStyle {
   double line_width_px = 3.5;
   double clearance_px = 1;       // kept free around lines and symbols
   double label_gap_px = 2;       // between two names (touching, "Cyprus" and "Gallions Reach" read as one)
+  double leader_step_px = 8;     // a name on a leader sits 1, 2 or 3 steps beyond its nearer places
+  // Names go round the ring and onto leaders only from this zoom on (symbols 12 px across):
+  // in an overview, a name that does not fit beside its symbol is better left out.
+  double ring_min_mean_edge_px = 60;
   // A station symbol's radius grows with the zoom: this share of the mean edge on screen, within
   // [min, max] px. A symbol on a bundle of n lines reaches (n - 1) / 2 line spacings further.
   double symbol_share = 0.1, symbol_min_px = 3, symbol_max_px = 8;
@@ -51,6 +59,8 @@ struct PlacedLabel {
   double text_x, text_y;        // the text's anchor point (on the first line's baseline)
   char anchor;                  // 's' start, 'm' middle, 'e' end of the text at text_x
   std::size_t split = 0;        // two lines: the byte where the second begins (0: one line)
+  bool leader = false;          // joined to the symbol by a leader from (lx0, ly0) to (lx1, ly1)
+  double lx0 = 0, ly0 = 0, lx1 = 0, ly1 = 0;
 };
 
 struct LabelScale {
@@ -60,6 +70,7 @@ struct LabelScale {
   std::vector<PlacedLabel> labels;
   std::size_t unlabelled = 0;   // named stations without a label at this scale
   std::size_t no_room = 0;      // of those, how many have no place clear of lines and symbols
+  std::size_t leaders = 0;      // labels on a leader
 };
 
 struct StationLabelInput {

@@ -130,5 +130,31 @@ TEST(ExportDrawing, NamesWithAHaloAndTheLegendAndAttribution) {
   EXPECT_NE(credits.find("Wikidata"), std::string::npos);
 }
 
+TEST(ExportDrawing, NamesSetOffOnALeaderGetTheirLeaderUnderTheName) {
+  auto scene = small_scene();
+  auto& labels = scene.label_scales.back().labels;
+  ASSERT_FALSE(labels.empty());
+  auto& l = labels[1];
+  l.leader = true;
+  l.lx0 = 8, l.ly0 = 0, l.lx1 = 20, l.ly1 = -5;
+  const auto d = draw_map(scene, 1200, 800);
+  const auto leaders = items_of<Strokes>(d, Role::label);
+  ASSERT_EQ(leaders.size(), 1u);
+  ASSERT_EQ(leaders[0]->paths.size(), 1u);
+  const auto& path = leaders[0]->paths[0];
+  ASSERT_EQ(path.size(), 2u);
+  // From the rim to the box, 12 px right and 5 px up on the page, before (under) every name.
+  EXPECT_NEAR(path[1].x - path[0].x, 12, 1e-9);
+  EXPECT_NEAR(path[1].y - path[0].y, -5, 1e-9);
+  std::size_t leader_at = 0, first_name_at = d.items.size();
+  for (std::size_t i = 0; i < d.items.size(); ++i) {
+    if (std::get_if<Strokes>(&d.items[i]) && std::get<Strokes>(d.items[i]).role == Role::label) leader_at = i;
+    if (const auto* t = std::get_if<Text>(&d.items[i]); t && t->role == Role::label) first_name_at = std::min(first_name_at, i);
+  }
+  EXPECT_LT(leader_at, first_name_at);
+  // Without leaders none is drawn.
+  EXPECT_TRUE(items_of<Strokes>(draw_map(small_scene(), 1200, 800), Role::label).empty());
+}
+
 }  // namespace
 }  // namespace tourmap::map_export

@@ -2,7 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <numbers>
 
 namespace tourmap::metro {
 namespace {
@@ -107,6 +109,97 @@ TEST(StationLabels, LongNamesBreakOntoTwoLines) {
   ASSERT_GT(label.split, 0u);
   EXPECT_EQ(l.in.names[0][label.split - 1], ' ');
   EXPECT_LT(label.x1 - label.x0, 130);
+}
+
+// A hub with a line leaving in each of the eight directions, its neighbours unnamed.
+Line star(double arm) {
+  Line l;
+  l.g.pos.push_back({0, 0});
+  for (int k = 0; k < 8; ++k) {
+    const double a = k * std::numbers::pi / 4;
+    l.g.pos.push_back({arm * std::cos(a), arm * std::sin(a)});
+  }
+  l.L.pos = l.g.pos;
+  l.in.names.assign(l.g.pos.size(), "");
+  l.in.names[0] = "Bank";
+  l.in.priority.assign(l.g.pos.size(), 0);
+  for (std::uint32_t k = 1; k <= 8; ++k) {
+    l.g.edges.push_back({0, k});
+    l.g.edge_lines.push_back({0});
+    l.g.min_length.push_back(arm);
+    l.L.paths.push_back({l.L.pos[0], l.L.pos[k]});
+    l.in.lines.push_back(1);
+  }
+  return l;
+}
+
+double segment_box_distance(XY a, XY b, const Box& r) {
+  // Sampled: fine for a test of a few px.
+  double best = 1e18;
+  for (int i = 0; i <= 1000; ++i) {
+    const double t = i / 1000.0, x = a.x + t * (b.x - a.x), y = a.y + t * (b.y - a.y);
+    best = std::min(best, std::hypot(std::max({r.x0 - x, 0.0, x - r.x1}), std::max({r.y0 - y, 0.0, y - r.y1})));
+  }
+  return best;
+}
+
+TEST(StationLabels, ACrowdedHubIsNamedOnALeaderClearOfItsLines) {
+  // Lines in all eight directions leave no place beside the symbol wide enough for the name:
+  // it goes out between two lines on a leader, and neither the box nor the leader meets a line.
+  auto l = star(10);
+  auto scales = place_station_labels(l.g, l.L, l.in, {100});
+  ASSERT_EQ(scales[0].labels.size(), 1u);
+  EXPECT_EQ(scales[0].unlabelled, 0u);
+  EXPECT_EQ(scales[0].leaders, 1u);
+  const auto& s = scales[0];
+  const auto& label = s.labels[0];
+  ASSERT_TRUE(label.leader);
+  const Box box = layout_box(l.L, s, label);
+  const XY rim{label.lx0 / s.px_per_unit, -label.ly0 / s.px_per_unit}, end{label.lx1 / s.px_per_unit, -label.ly1 / s.px_per_unit};
+  // The leader ends on the box's edge and starts on the symbol's rim.
+  EXPECT_LT(segment_box_distance(end, end, box), 0.01 / s.px_per_unit);
+  EXPECT_NEAR(std::hypot(label.lx0, label.ly0), s.symbol_px, 0.01);
+  const double half = 2.75 / s.px_per_unit;  // half a line and the clearance
+  for (const auto& path : l.L.paths) {
+    EXPECT_GE(segment_box_distance(path[0], path[1], box), half);
+    for (int i = 0; i <= 100; ++i) {
+      const XY p{rim.x + i / 100.0 * (end.x - rim.x), rim.y + i / 100.0 * (end.y - rim.y)};
+      EXPECT_GE(segment_box_distance(path[0], path[1], {p.x, p.y, p.x, p.y}), half * 0.999);
+    }
+  }
+}
+
+TEST(StationLabels, NoLeaderWhereTheNameFitsBesideItsSymbol) {
+  auto l = line_of(5);
+  for (const auto& s : place_station_labels(l.g, l.L, l.in, {60, 200})) {
+    EXPECT_EQ(s.leaders, 0u);
+    for (const auto& label : s.labels) EXPECT_FALSE(label.leader);
+  }
+}
+
+TEST(StationLabels, HyphenatedNamesBreakAfterAHyphen) {
+  // The same squeeze as above for one hyphenated word: the hyphen stays on the first line.
+  Line l;
+  const XY pts[] = {{0, 0}, {0, 10}, {0, -10}, {13, 20}, {13, -20}, {-13, 20}, {-13, -20}};
+  for (XY p : pts) {
+    l.g.pos.push_back(p);
+    l.L.pos.push_back(p);
+    l.in.names.push_back("");
+    l.in.priority.push_back(0);
+  }
+  l.in.names[0] = "Mendelssohn-Bartholdy-Park";
+  for (auto [a, b] : {std::pair{0u, 1u}, std::pair{0u, 2u}, std::pair{3u, 4u}, std::pair{5u, 6u}}) {
+    l.g.edges.push_back({a, b});
+    l.g.edge_lines.push_back({0});
+    l.g.min_length.push_back(10);
+    l.L.paths.push_back({l.L.pos[a], l.L.pos[b]});
+    l.in.lines.push_back(1);
+  }
+  auto scales = place_station_labels(l.g, l.L, l.in, {250});
+  ASSERT_EQ(scales[0].labels.size(), 1u);
+  const auto split = scales[0].labels[0].split;
+  ASSERT_GT(split, 0u);
+  EXPECT_EQ(l.in.names[0].substr(0, split), "Mendelssohn-");
 }
 
 TEST(StationLabels, WidthsComeFromTheFont) {

@@ -122,6 +122,8 @@ export class MetroLayers {
   /** Pairs of station ids at one place under one name. */
   private readonly stationGroups: [string, string][];
   private readonly labels: Label[] = [];
+  /** Per station id: the leader of a name set off from its symbol (made when first needed). */
+  private readonly leaders = new Map<string, { line: SVGLineElement; anchor: Anchor }>();
   private readonly poiLayer: SVGGElement;
   private readonly labelLayer: SVGGElement;
   private readonly tooltip: MapTooltip;
@@ -563,6 +565,7 @@ export class MetroLayers {
     const font = serverFont(server.info);
     for (const [id, { label, feature }] of this.stations) {
       const placed = byStation.get(id);
+      this.showLeader(id, label.anchor, placed && placed.length > 9 ? (placed.slice(9) as number[]) : undefined);
       if (!placed) {
         label.text.setAttribute('visibility', 'hidden');
         continue;
@@ -575,6 +578,25 @@ export class MetroLayers {
       label.text.setAttribute('visibility', 'visible');
     }
     this.map.requestRender();
+  }
+
+  /** The name's leader from the symbol's rim to its box ([x0, y0, x1, y1] px from `at`), or none. */
+  private showLeader(id: string, at: Anchor, coords?: number[]): void {
+    let leader = this.leaders.get(id);
+    if (!coords || coords.length < 4) {
+      leader?.line.setAttribute('visibility', 'hidden');
+      return;
+    }
+    if (!leader) {
+      const line = svg('line', { class: 'station-leader' });
+      this.labelLayer.prepend(line); // under every name
+      leader = { line, anchor: this.map.anchor(line, [at.x, at.y]) };
+      this.leaders.set(id, leader);
+    }
+    [leader.anchor.x, leader.anchor.y] = [at.x, at.y];
+    const [x1, y1, x2, y2] = coords.map((v) => v.toFixed(1));
+    for (const [name, value] of [['x1', x1], ['y1', y1], ['x2', x2], ['y2', y2]] as const) leader.line.setAttribute(name, value!);
+    leader.line.setAttribute('visibility', 'visible');
   }
 }
 
