@@ -527,25 +527,33 @@ class Placer {
     return true;
   }
 
-  // v takes a place whose only conflict is one label that has another free place.
+  // v takes a place (clear of the map, cheapest first) whose only conflicts are at most
+  // kMaxDisplaced labels (one in an overview, where most stations go unnamed anyway and the
+  // search would cost the most) that each find another free place.
+  static constexpr std::size_t kMaxDisplaced = 3;
   bool repair(std::uint32_t v) {
-    for (int p = 0; p < kCandidates; ++p) {
-      if (!valid(v, p)) continue;
+    const std::size_t max_displaced = ring_ ? kMaxDisplaced : 1;
+    for (int p : ranked_candidates(v, 0, ring_ ? kCandidates : kPlaces)) {
       const auto l = candidate(v, p);
       const auto conflicts = label_conflicts(rect_of(v, l), leader_of(v, l));
-      if (conflicts.size() != 1 || !clear_of_map(v, p)) continue;
-      const int other = conflicts.front();
-      const auto w = labels_[static_cast<std::size_t>(other)].node;
-      const int old_place = candidate_[static_cast<std::size_t>(other)];
-      remove(other);
-      put(v, p);
-      if (const int c = best_free(w); c >= 0) {
-        put(w, c);
-        return true;
+      if (conflicts.empty() || conflicts.size() > max_displaced || !clear_of_map(v, p)) continue;
+      std::vector<std::pair<std::uint32_t, int>> displaced;  // node, its place
+      for (int other : conflicts) {
+        displaced.push_back({labels_[static_cast<std::size_t>(other)].node, candidate_[static_cast<std::size_t>(other)]});
+        remove(other);
       }
-      // Undo: v goes again, w back where it was.
+      put(v, p);
+      std::size_t moved = 0;
+      for (; moved < displaced.size(); ++moved) {
+        const int c = best_free(displaced[moved].first);
+        if (c < 0) break;
+        put(displaced[moved].first, c);
+      }
+      if (moved == displaced.size()) return true;
+      // Undo: v and the moved ones go again, every displaced label back where it was.
       remove(placed_[v]);
-      put(w, old_place);
+      for (std::size_t k = 0; k < moved; ++k) remove(placed_[displaced[k].first]);
+      for (const auto& [w, place] : displaced) put(w, place);
     }
     return false;
   }

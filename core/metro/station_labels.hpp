@@ -11,8 +11,8 @@
 // the name may sit anywhere around the symbol (a box touching the ring of its sixteen places at
 // one of 48 angles), and last of all a little further out, joined to the symbol by a thin
 // leader that keeps clear of lines, symbols and other names (a callout, as map makers use in
-// crowded areas). A second pass names a station left out by moving one neighbour's label to
-// another free place.
+// crowded areas). A second pass names a station left out by moving up to three labels in its
+// way to other free places.
 //
 // Label sizes are pixels and the map zooms, so a placement is made per scale (px per layout
 // unit). One made at a scale stays clear at every larger one (positions spread, boxes keep

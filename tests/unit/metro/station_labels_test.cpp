@@ -83,9 +83,9 @@ TEST(StationLabels, TheLineKeepsOneSide) {
   EXPECT_TRUE((above == 3 && below == 0) || (above == 0 && below == 3)) << above << " " << below;
 }
 
-TEST(StationLabels, LongNamesBreakOntoTwoLines) {
-  // A station on a vertical line with two more vertical lines 13 units to either side: at 10 px
-  // per unit its name fits between them only on two lines.
+// A station named `name` on a vertical line, with two more vertical lines 13 units to either
+// side (the mean edge is 25 units: at 250 px, 10 px per unit).
+Line squeezed(const std::string& name) {
   Line l;
   const XY pts[] = {{0, 0}, {0, 10}, {0, -10}, {13, 20}, {13, -20}, {-13, 20}, {-13, -20}};
   for (XY p : pts) {
@@ -94,7 +94,7 @@ TEST(StationLabels, LongNamesBreakOntoTwoLines) {
     l.in.names.push_back("");
     l.in.priority.push_back(0);
   }
-  l.in.names[0] = "A rather long name for the station";
+  l.in.names[0] = name;
   for (auto [a, b] : {std::pair{0u, 1u}, std::pair{0u, 2u}, std::pair{3u, 4u}, std::pair{5u, 6u}}) {
     l.g.edges.push_back({a, b});
     l.g.edge_lines.push_back({0});
@@ -102,6 +102,13 @@ TEST(StationLabels, LongNamesBreakOntoTwoLines) {
     l.L.paths.push_back({l.L.pos[a], l.L.pos[b]});
     l.in.lines.push_back(1);
   }
+  return l;
+}
+
+TEST(StationLabels, LongNamesBreakOntoTwoLines) {
+  // A station on a vertical line with two more vertical lines 13 units to either side: at 10 px
+  // per unit its name fits between them only on two lines.
+  auto l = squeezed("A rather long name for the station");
   // The mean edge is 25 units: 250 px is 10 px per unit.
   auto scales = place_station_labels(l.g, l.L, l.in, {250});
   ASSERT_EQ(scales[0].labels.size(), 1u);
@@ -179,22 +186,7 @@ TEST(StationLabels, NoLeaderWhereTheNameFitsBesideItsSymbol) {
 
 TEST(StationLabels, HyphenatedNamesBreakAfterAHyphen) {
   // The same squeeze as above for one hyphenated word: the hyphen stays on the first line.
-  Line l;
-  const XY pts[] = {{0, 0}, {0, 10}, {0, -10}, {13, 20}, {13, -20}, {-13, 20}, {-13, -20}};
-  for (XY p : pts) {
-    l.g.pos.push_back(p);
-    l.L.pos.push_back(p);
-    l.in.names.push_back("");
-    l.in.priority.push_back(0);
-  }
-  l.in.names[0] = "Mendelssohn-Bartholdy-Park";
-  for (auto [a, b] : {std::pair{0u, 1u}, std::pair{0u, 2u}, std::pair{3u, 4u}, std::pair{5u, 6u}}) {
-    l.g.edges.push_back({a, b});
-    l.g.edge_lines.push_back({0});
-    l.g.min_length.push_back(10);
-    l.L.paths.push_back({l.L.pos[a], l.L.pos[b]});
-    l.in.lines.push_back(1);
-  }
+  auto l = squeezed("Mendelssohn-Bartholdy-Park");
   auto scales = place_station_labels(l.g, l.L, l.in, {250});
   ASSERT_EQ(scales[0].labels.size(), 1u);
   const auto split = scales[0].labels[0].split;
