@@ -183,7 +183,7 @@ class BendSearch {
   void refresh_clearances();
   Drawn drawn_along(std::size_t c, const std::vector<XY>& shape) const;
   Drawn drawn_near_targets(std::size_t c, const std::vector<XY>& shape) const;
-  void run_phase(BendReductionReport& report, Clock::time_point until);
+  void run_phase(BendReductionReport& report, Clock::time_point until, int max_rounds);
   CandidateQueue candidates(std::size_t c) const;
   Drawn materialize(std::size_t c, Proposal& p) const;
   double shape_bound(std::size_t c, const std::vector<XY>& shape, const std::vector<double>* arc) const;
@@ -900,10 +900,10 @@ void BendSearch::write_back() {
   }
 }
 
-void BendSearch::run_phase(BendReductionReport& report, Clock::time_point until) {
+void BendSearch::run_phase(BendReductionReport& report, Clock::time_point until, int max_rounds) {
   deadline_ = until;
   for (std::size_t c = 0; c < chains_.size(); ++c) drawn_[c].cost = chain_cost(c, drawn_[c]);
-  for (int round = 0; round < p_.max_rounds && !out_of_time(); ++round) {
+  for (int round = 0; round < max_rounds && !out_of_time(); ++round) {
     ++report.rounds;
     fit_targets();
     refresh_clearances();
@@ -927,7 +927,8 @@ void BendSearch::run(BendReductionReport& report) {
   report.bends_before = total_bends();
   // Phase 1: bends first, the geography pulling weakly. Phase 2: the geography back where it
   // costs no bend (see turn_cost).
-  run_phase(report, started + std::chrono::duration_cast<std::chrono::microseconds>(budget * (1 - p_.polish_share)));
+  run_phase(report, started + std::chrono::duration_cast<std::chrono::microseconds>(budget * (1 - p_.polish_share)),
+            p_.max_rounds);
   const bool phase1_timed_out = out_of_time();
   for (const auto& d : drawn_) bend_base_.push_back(turns_of(d.shape, eps_));
   p_.w_bend *= p_.polish_bend_factor;
@@ -935,7 +936,7 @@ void BendSearch::run(BendReductionReport& report) {
   p_.w_displacement = p_.w_displacement_polish;
   p_.w_gap = p_.w_gap_polish;
   strict_pairs_ = true;
-  run_phase(report, started + budget);
+  run_phase(report, started + budget, p_.polish_max_rounds);
   report.timed_out = phase1_timed_out || out_of_time();
   write_back();
   report.bends_after = total_bends();

@@ -28,7 +28,8 @@
 // without adding a bend, where no chain may crowd another below its floor.
 // A cycle (a chain from an anchor back to it, as Heathrow's loop) is split at a middle station
 // so that the search can move its stations.
-// A local search with a time limit: a phase stops when a round improves nothing.
+// A local search: a phase stops when a round improves nothing, after its number of rounds, or
+// at the time limit (rounds end it the same way on any machine; the time limit does not).
 
 #include "metro/layout_graph.hpp"
 
@@ -53,8 +54,9 @@ struct BendReductionParams {
   double longer_share = 0.2;       // ...times this when it is longer
   double move_radius = 1.5;        // anchor moves, in mean target lengths
   std::size_t evaluations_per_anchor = 24;  // candidate positions fully evaluated per anchor and round
-  int max_rounds = 12;
-  double time_limit_ms = 250.0;     // of this thread's CPU time (a busy machine gets the same layout)
+  int max_rounds = 12;             // the first phase's rounds...
+  int polish_max_rounds = 12;      // ...and the second's
+  double time_limit_ms = 250.0;     // of this thread's CPU time (load on other cores does not count)
 };
 
 struct BendReductionReport {
