@@ -175,24 +175,32 @@ std::string order_row(const std::string& network, const std::string& request, co
 }
 
 // A row of the labels table: time, and labelled / all at each scale.
-// Overlaps among a scale's names, and names crossed by a line's centre (both must be 0), in
-// layout units.
-std::size_t label_overlaps(const metro::Layout& L, const metro::LabelScale& scale) {
+// Overlaps among a scale's names (at its zoom and at 8 zooms up to `next_px_per_unit`, where a
+// client still shows it), and names crossed by a line's centre (both must be 0), in layout
+// units.
+std::size_t label_overlaps(const metro::Layout& L, const metro::LabelScale& scale, double next_px_per_unit) {
   struct Box {
     double x0, y0, x1, y1;
   };
-  std::vector<Box> boxes;
-  for (const auto& l : scale.labels) {
-    const auto p = L.pos[l.node];
-    const double k = scale.px_per_unit;
-    boxes.push_back({p.x + l.x0 / k, p.y - l.y1 / k, p.x + l.x1 / k, p.y - l.y0 / k});
-  }
-  std::size_t n = 0;
-  for (std::size_t i = 0; i < boxes.size(); ++i)
-    for (std::size_t j = i + 1; j < boxes.size(); ++j) {
-      const auto &a = boxes[i], &b = boxes[j];
-      n += a.x0 < b.x1 && b.x0 < a.x1 && a.y0 < b.y1 && b.y0 < a.y1;
+  const auto boxes_at = [&](double k) {
+    std::vector<Box> boxes;
+    for (const auto& l : scale.labels) {
+      const auto p = L.pos[l.node];
+      boxes.push_back({p.x + l.x0 / k, p.y - l.y1 / k, p.x + l.x1 / k, p.y - l.y0 / k});
     }
+    return boxes;
+  };
+  std::size_t n = 0;
+  for (int step = 0; step <= 8; ++step) {
+    const double k = scale.px_per_unit + (next_px_per_unit - scale.px_per_unit) * step / 8 * (1 - 1e-6);
+    const auto at = boxes_at(k);
+    for (std::size_t i = 0; i < at.size(); ++i)
+      for (std::size_t j = i + 1; j < at.size(); ++j) {
+        const auto &a = at[i], &b = at[j];
+        n += a.x0 < b.x1 && b.x0 < a.x1 && a.y0 < b.y1 && b.y0 < a.y1;
+      }
+  }
+  const auto boxes = boxes_at(scale.px_per_unit);
   // A line's centre through a name: clip each segment to each box (Liang-Barsky).
   for (const auto& b : boxes)
     for (const auto& path : L.paths)
@@ -238,7 +246,9 @@ std::pair<std::size_t, std::size_t> named_in_view(const metro::CityLayoutResult&
 std::string labels_row(const std::string& network, const std::string& request, const metro::CityLayoutResult& r,
                        std::size_t stations) {
   std::size_t overlaps = 0;
-  for (const auto& scale : r.labels) overlaps += label_overlaps(r.layout, scale);
+  for (std::size_t k = 0; k < r.labels.size(); ++k)
+    overlaps += label_overlaps(r.layout, r.labels[k],
+                               k + 1 < r.labels.size() ? r.labels[k + 1].px_per_unit : 4 * r.labels[k].px_per_unit);
   const auto [fit, twice] = named_in_view(r, 1200, 720);
   char cell[160];
   std::snprintf(cell, sizeof cell, "| %s | %s | %.0f | %zu/%zu | %zu/%zu | %zu |", network.c_str(), request.c_str(), r.timing.labels,
@@ -253,9 +263,9 @@ std::string labels_row(const std::string& network, const std::string& request, c
 
 void print_labels(const std::vector<std::string>& rows) {
   std::printf("\n## Station names\n\nThe placement's time for all zooms; stations named in a 1200 x 720 px view of the "
-              "whole network and at twice that zoom; overlaps of names with names or with a line's centre, over all "
-              "zooms (must be 0); and stations named at each zoom (the mean edge on screen, px; symbols 12 px across "
-              "from 60 px on).\n\n| network | request | time ms | in view | 2x | overlaps |");
+              "whole network and at twice that zoom; overlaps of names with names (at every zoom a placement is "
+              "shown at, up to the next one's) or with a line's centre, over all zooms (must be 0); and stations "
+              "named at each zoom (the mean edge on screen, px; symbols 12 px across from 60 px on).\n\n| network | request | time ms | in view | 2x | overlaps |");
   for (double e : metro::kLabelMeanEdgesPx) std::printf(" %.0f px |", e);
   std::printf("\n|---|---|---:|---:|---:|---:|");
   for (std::size_t i = 0; i < metro::kLabelMeanEdgesPx.size(); ++i) std::printf("---:|");

@@ -26,7 +26,6 @@ struct Rect {
   double x0, y0, x1, y1;  // layout units, y up
 };
 
-bool overlaps(const Rect& a, const Rect& b) { return a.x0 < b.x1 && b.x0 < a.x1 && a.y0 < b.y1 && b.y0 < a.y1; }
 
 double rect_point_distance(const Rect& r, XY p) {
   const double dx = std::max({r.x0 - p.x, 0.0, p.x - r.x1}), dy = std::max({r.y0 - p.y, 0.0, p.y - r.y1});
@@ -288,7 +287,7 @@ class Placer {
 
   double mean_edge() const { return mean_; }
 
-  LabelScale place(double mean_edge_px, double symbol_px) {
+  LabelScale place(double mean_edge_px, double symbol_px, double next_mean_edge_px) {
     LabelScale out;
     out.mean_edge_px = mean_edge_px;
     out.px_per_unit = mean_edge_px / mean_;
@@ -296,6 +295,8 @@ class Placer {
     scale_ = out.px_per_unit;
     ring_ = mean_edge_px >= style_.ring_min_mean_edge_px;
     symbol_px_ = symbol_px;
+    t_hi_ = 1 / scale_;
+    t_lo_ = std::isfinite(next_mean_edge_px) ? mean_ / next_mean_edge_px : 0.0;
     labels_.clear();
     candidate_.clear();
     label_rects_.clear();
@@ -336,14 +337,48 @@ class Placer {
     return symbol_px_ + (static_cast<double>(n) - 1) / 2 * style_.line_spacing_px;
   }
 
-  Rect rect_of(std::uint32_t v, const PlacedLabel& l) const {
+  // A label's box and leader in layout units at `t` layout units per px (1 / scale_ at this
+  // placement's zoom).
+  Rect rect_at(std::uint32_t v, const PlacedLabel& l, double t) const {
     const XY p = L_.pos[v];
-    return {p.x + l.x0 / scale_, p.y - l.y1 / scale_, p.x + l.x1 / scale_, p.y - l.y0 / scale_};
+    return {p.x + l.x0 * t, p.y - l.y1 * t, p.x + l.x1 * t, p.y - l.y0 * t};
   }
-  Leader leader_of(std::uint32_t v, const PlacedLabel& l) const {
+  Leader leader_at(std::uint32_t v, const PlacedLabel& l, double t) const {
     if (!l.leader) return {};
     const XY p = L_.pos[v];
-    return {{p.x + l.lx0 / scale_, p.y - l.ly0 / scale_}, {p.x + l.lx1 / scale_, p.y - l.ly1 / scale_}, true};
+    return {{p.x + l.lx0 * t, p.y - l.ly0 * t}, {p.x + l.lx1 * t, p.y - l.ly1 * t}, true};
+  }
+  Rect rect_of(std::uint32_t v, const PlacedLabel& l) const { return rect_at(v, l, 1 / scale_); }
+  Leader leader_of(std::uint32_t v, const PlacedLabel& l) const { return leader_at(v, l, 1 / scale_); }
+  // Everything a label covers from this zoom to the next: boxes keep their size in px while
+  // the stations spread, so in layout units a label shrinks towards its station.
+  Rect swept(std::uint32_t v, const PlacedLabel& l) const {
+    const XY p = L_.pos[v];
+    const Rect r = bounds_with(rect_of(v, l), leader_of(v, l));
+    return {std::min(r.x0, p.x), std::min(r.y0, p.y), std::max(r.x1, p.x), std::max(r.y1, p.y)};
+  }
+
+  // Whether the boxes of label l (of v) and of placed label k come within the names' gap of
+  // each other at any zoom from this placement's to the next one's (t from t_hi_ down to
+  // t_lo_). Per axis the boxes are [P + a0 t, P + a1 t]; they overlap where P_a - P_b <
+  // (b1 - a0) t and P_b - P_a < (a1 - b0) t, each a half-line in t.
+  bool boxes_meet(std::uint32_t v, const PlacedLabel& l, std::size_t k) const {
+    const PlacedLabel& o = labels_[k];
+    const XY pa = L_.pos[v], pb = L_.pos[o.node];
+    const double g = style_.label_gap_px;
+    double lo = t_lo_, hi = t_hi_;
+    // c < m t: t > c / m (m > 0), t < c / m (m < 0), always or never (m = 0).
+    const auto keep = [&](double c, double m) {
+      if (m > 0) lo = std::max(lo, c / m);
+      else if (m < 0) hi = std::min(hi, c / m);
+      else if (c >= 0) hi = -1;
+    };
+    // x: a0 = x0 - g, a1 = x1 + g; y (up): a0 = -y1 - g, a1 = -y0 + g.
+    keep(pa.x - pb.x, o.x1 - (l.x0 - g));
+    keep(pb.x - pa.x, (l.x1 + g) - o.x0);
+    keep(pa.y - pb.y, -o.y0 - (-l.y1 - g));
+    keep(pb.y - pa.y, (-l.y0 + g) - (-o.y1));
+    return lo < hi * (1 - 1e-9);
   }
 
   // Candidate c < kPlaces: c % 16 the place (the 8 sides, then E, W, N, S slid to one side and
@@ -420,19 +455,31 @@ class Placer {
 
   std::size_t max_lines() const { return max_lines_; }
 
-  // Labels (ids into labels_) whose boxes come within the names' gap of `box` (two names
-  // touching read as one), or whose leaders cross it or the leader `lead`, or are crossed by it.
-  std::vector<int> label_conflicts(const Rect& box, const Leader& lead) const {
+  // Labels (ids into labels_) whose boxes come within the names' gap of label l of v (two
+  // names touching read as one) at any zoom until the next placement's, or whose leaders cross
+  // it or its leader, or are crossed by it (leaders: checked at both ends of the zooms and
+  // between).
+  std::vector<int> label_conflicts(std::uint32_t v, const PlacedLabel& l) const {
     const double gap = style_.label_gap_px / scale_;
-    const Rect r = expanded(box, gap);
     std::vector<int> out;
-    label_grid_.near(bounds_with(r, lead), [&](int i) {
+    const bool any_leader = l.leader;
+    label_grid_.near(expanded(swept(v, l), gap), [&](int i) {
       const auto k = static_cast<std::size_t>(i);
       if (labels_[k].node == kRemoved || std::find(out.begin(), out.end(), i) != out.end()) return;
-      const Leader& other = leaders_[k];
-      const bool hit = overlaps(r, label_rects_[k]) || (other.on && crosses(r, other.a, other.b)) ||
-                       (lead.on && crosses(expanded(label_rects_[k], gap), lead.a, lead.b)) ||
-                       (lead.on && other.on && segments_meet(lead.a, lead.b, other.a, other.b));
+      bool hit = boxes_meet(v, l, k);
+      if (!hit && (any_leader || labels_[k].leader)) {
+        const double mid = (t_lo_ > 0 ? t_lo_ : t_hi_ / 4);
+        for (double t : {t_hi_, (t_hi_ + mid) / 2, mid}) {
+          const double g = style_.label_gap_px * t;
+          const Rect r = expanded(rect_at(v, l, t), g), other_r = expanded(rect_at(labels_[k].node, labels_[k], t), g);
+          const Leader lead = leader_at(v, l, t), other = leader_at(labels_[k].node, labels_[k], t);
+          if ((other.on && crosses(r, other.a, other.b)) || (lead.on && crosses(other_r, lead.a, lead.b)) ||
+              (lead.on && other.on && segments_meet(lead.a, lead.b, other.a, other.b))) {
+            hit = true;
+            break;
+          }
+        }
+      }
       if (hit) out.push_back(i);
     });
     return out;
@@ -475,7 +522,7 @@ class Placer {
     const auto l = candidate(v, c);
     const Rect r = rect_of(v, l);
     const Leader lead = leader_of(v, l);
-    auto conflicts = label_conflicts(r, lead);
+    auto conflicts = label_conflicts(v, l);
     conflicts.erase(std::remove(conflicts.begin(), conflicts.end(), except_label), conflicts.end());
     return conflicts.empty() && clear_of_map(r) && leader_clear(v, lead);
   }
@@ -511,7 +558,7 @@ class Placer {
     candidate_.push_back(c);
     label_rects_.push_back(rect_of(v, l));
     leaders_.push_back(leader_of(v, l));
-    label_grid_.add(bounds_with(label_rects_.back(), leaders_.back()), id);
+    label_grid_.add(swept(v, l), id);
     placed_[v] = id;
   }
 
@@ -535,7 +582,7 @@ class Placer {
     const std::size_t max_displaced = ring_ ? kMaxDisplaced : 1;
     for (int p : ranked_candidates(v, 0, ring_ ? kCandidates : kPlaces)) {
       const auto l = candidate(v, p);
-      const auto conflicts = label_conflicts(rect_of(v, l), leader_of(v, l));
+      const auto conflicts = label_conflicts(v, l);
       if (conflicts.empty() || conflicts.size() > max_displaced || !clear_of_map(v, p)) continue;
       std::vector<std::pair<std::uint32_t, int>> displaced;  // node, its place
       for (int other : conflicts) {
@@ -574,6 +621,7 @@ class Placer {
   double label_grid_cells_ = 0;
   // Per scale:
   double scale_ = 1, symbol_px_ = 0;
+  double t_hi_ = 1, t_lo_ = 0;  // layout units per px at this placement's zoom and at the next one's
   bool ring_ = false;  // the ring and leaders in use
   std::vector<PlacedLabel> labels_;
   std::vector<int> candidate_;  // per label: the candidate it is
@@ -594,7 +642,7 @@ std::vector<LabelScale> place_station_labels(const LayoutGraph& g, const Layout&
   for (std::size_t k = 0; k < scales.size(); ++k) {
     // Kept clear of the symbols as big as they get before the next scale takes over.
     const double next = k + 1 < scales.size() ? scales[k + 1] : std::numeric_limits<double>::infinity();
-    out.push_back(placer.place(scales[k], style.symbol_px(next)));
+    out.push_back(placer.place(scales[k], style.symbol_px(next), next));
   }
   return out;
 }

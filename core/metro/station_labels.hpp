@@ -15,11 +15,15 @@
 // way to other free places.
 //
 // Label sizes are pixels and the map zooms, so a placement is made per scale (px per layout
-// unit). One made at a scale stays clear at every larger one (positions spread, boxes keep
-// their size), and symbols grow with the zoom up to a cap, so each scale's placement is made
-// with the symbols of the next scale up: a client shows the placement of the largest scale at
-// or below its zoom (cartographic label placement: Christensen, Marks, Shieber, ACM TOG 1995,
-// greedy with local repair; the conflict-graph formulation in DESIGN.md's references).
+// unit). A client shows a placement from its zoom until the next one's: there the boxes keep
+// their size while the stations spread, so two names pointing towards each other could meet
+// at a zoom in between. Every pair of names is checked over that whole range (exactly: on each
+// axis two boxes overlap on a half-line in 1 / zoom). Lines and symbols only move away from a
+// name as the zoom grows: they are checked at the placement's zoom, with the symbols as big
+// as they get before the next placement takes over. A client shows the placement of the
+// largest scale at or below its zoom (cartographic label placement: Christensen, Marks,
+// Shieber, ACM TOG 1995, greedy with local repair; the conflict-graph formulation in
+// DESIGN.md's references).
 
 #include "metro/label_font.hpp"
 #include "metro/layout_graph.hpp"

@@ -62,8 +62,9 @@ TEST_F(MetroApi, LayoutIsOctilinearWithWarpedPoisAndAReport) {
   EXPECT_EQ(again.body, uniform.body);
 }
 
-// The served station names: at every zoom no two overlap, and none lies on an edge (half its
-// bundle of parallel lines wide); more zoom, at least as many names.
+// The served station names: at every zoom no two overlap (nor at the zooms a client shows a
+// placement at, up to the next one's), and none lies on an edge (half its bundle of parallel
+// lines wide); more zoom, at least as many names.
 TEST_F(MetroApi, StationNamesNeverOverlap) {
   auto r = live->get("/api/v1/cities/vienna/layout");
   ASSERT_EQ(r.status, 200) << r.body;
@@ -74,23 +75,36 @@ TEST_F(MetroApi, StationNamesNeverOverlap) {
   const double spacing = labels["line_spacing_px"].get<double>();
   ASSERT_GE(labels["scales"].size(), 3u);
   std::size_t previous = 0;
-  for (const auto& scale : labels["scales"]) {
-    const double k = scale["px_per_m"].get<double>();  // px per metre
-    struct Box {
-      double x0, y0, x1, y1;
-    };
-    std::vector<Box> boxes;  // metres, y north
+  struct Box {
+    double x0, y0, x1, y1;
+  };
+  // The boxes of a scale's names at `k` px per metre, in metres (y north).
+  const auto boxes_at = [&](const nlohmann::json& scale, double k) {
+    std::vector<Box> boxes;
     for (const auto& label : scale["labels"]) {
       const auto& at = stations.at(label[0].get<std::size_t>())["geometry"]["coordinates"];
       const double x = at[0].get<double>(), y = at[1].get<double>();
       boxes.push_back({x + label[1].get<double>() / k, y - label[4].get<double>() / k, x + label[3].get<double>() / k,
                        y - label[2].get<double>() / k});
     }
-    for (std::size_t i = 0; i < boxes.size(); ++i)
-      for (std::size_t j = i + 1; j < boxes.size(); ++j) {
-        const auto &a = boxes[i], &b = boxes[j];
-        EXPECT_FALSE(a.x0 < b.x1 && b.x0 < a.x1 && a.y0 < b.y1 && b.y0 < a.y1) << "labels " << i << " and " << j;
-      }
+    return boxes;
+  };
+  const auto& scales = labels["scales"];
+  for (std::size_t n = 0; n < scales.size(); ++n) {
+    const auto& scale = scales[n];
+    const double k = scale["px_per_m"].get<double>();  // px per metre
+    const double next = n + 1 < scales.size() ? scales[n + 1]["px_per_m"].get<double>() : 4 * k;
+    for (int step = 0; step <= 8; ++step) {
+      const double zoom = k + (next - k) * step / 8 * (1 - 1e-6);
+      const auto boxes = boxes_at(scale, zoom);
+      for (std::size_t i = 0; i < boxes.size(); ++i)
+        for (std::size_t j = i + 1; j < boxes.size(); ++j) {
+          const auto &a = boxes[i], &b = boxes[j];
+          EXPECT_FALSE(a.x0 < b.x1 && b.x0 < a.x1 && a.y0 < b.y1 && b.y0 < a.y1)
+              << "labels " << i << " and " << j << " of scale " << n << " at " << zoom << " px/m";
+        }
+    }
+    const auto boxes = boxes_at(scale, k);
     for (const auto& e : l["edges"]["features"]) {
       const double half = e["properties"]["lines"].size() * spacing / 2 / k;
       const auto& c = e["geometry"]["coordinates"];
