@@ -25,12 +25,12 @@
 
 #include "load/file.hpp"
 #include "load/metro_load.hpp"
+#include "load/metro_rules_json.hpp"
 #include "load/name_rules.hpp"
 #include "load/poi_load.hpp"
 #include "metro/city_layout.hpp"
 #include "metro/layout_metrics.hpp"
 #include "metro_variants.hpp"
-#include "store/metro_rules.hpp"
 
 #include <nlohmann/json.hpp>
 
@@ -83,7 +83,7 @@ City load_city(const nlohmann::json& entry, const std::string& data_dir) {
   // The names as users see them (the manifest's name rules); every line kept, so that the
   // written layouts match metro_compare.py's input (the import hides construction lines).
   if (metro.contains("rules")) {
-    auto rules = store::parse_metro_rules(metro["rules"], "metro.rules");
+    auto rules = load::parse_metro_rules(metro["rules"], "metro.rules");
     rules.hide_lines.clear();
     rules.lines.clear();
     load::apply_metro_rules(c.net, rules);

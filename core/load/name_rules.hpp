@@ -3,7 +3,7 @@
 // the store: strip prefixes and suffixes ("U ", " (Berlin)"), drop bracketed parts ("[U8]"),
 // title-case names written in capitals only ("PRAÇA DE ESPANHA" -> "Praça de Espanha"), rename
 // single stations, hide lines (under construction), override a line's label or colour.
-// Manifests and uploads carry them as JSON (store/metro_rules.hpp). Pure functions: no I/O.
+// Manifests and uploads carry them as JSON (load/metro_rules_json.hpp). Pure functions: no I/O.
 
 #include "model/metro.hpp"
 

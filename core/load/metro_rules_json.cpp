@@ -1,8 +1,8 @@
-#include "metro_rules.hpp"
+#include "load/metro_rules_json.hpp"
 
 #include <stdexcept>
 
-namespace tourmap::store {
+namespace tourmap::load {
 namespace {
 
 constexpr const char* kFields[] = {"strip_prefixes", "strip_suffixes", "drop_brackets", "title_case", "particles",
@@ -97,4 +97,4 @@ nlohmann::json metro_rules_json(const load::MetroRules& r) {
   return j;
 }
 
-}  // namespace tourmap::store
+}  // namespace tourmap::load
