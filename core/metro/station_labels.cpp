@@ -2,6 +2,7 @@
 
 #include "metro/label_font.hpp"
 #include "metro/segment_geometry.hpp"
+#include "util/stop.hpp"
 
 #include <algorithm>
 #include <array>
@@ -309,15 +310,21 @@ class Placer {
       label_grid_.clear();
     }
     std::vector<std::uint32_t> left_out;
-    for (auto v : order_)
+    // The request's deadline or client stops the placement (util/stop.hpp): on a dense network
+    // the ring and the repair try hundreds of places per station left out.
+    for (auto v : order_) {
+      util::check_stop();
       if (!place_best(v)) left_out.push_back(v);
-    // Repair: a station left out may take a place held by one neighbour's label that can move.
+    }
+    // Repair: a station left out may take a place held by labels in its way that can move.
     std::size_t unlabelled = 0;
-    for (auto v : left_out)
+    for (auto v : left_out) {
+      util::check_stop();
       if (!repair(v)) {
         ++unlabelled;
         if (!has_room(v)) ++out.no_room;
       }
+    }
     for (const auto& l : labels_)
       if (l.node != kRemoved) {
         out.labels.push_back(l);
