@@ -46,9 +46,9 @@ struct CityLayout {
 
 // Solvers (parameter `solver`): "fast" is the grid-graph routing alone; "mip" polishes it with
 // the octilinear MIP for the rest of the time limit; "auto" routes, then polishes networks of up
-// to `kAutoMipStations` stations for a tenth of the time limit, at most 0.5 s. The MIP result is
-// kept only when it lowers the objective without adding crossings, order violations or bends
-// (metro/mip_polish.hpp).
+// to `kAutoMipStations` stations for a tenth of the time limit, at most 0.5 s (the server
+// answers "auto" with the fast layout and polishes in the background instead: MetroService).
+// The MIP result is kept only with fewer bends and no worse otherwise (metro/mip_polish.hpp).
 inline constexpr std::size_t kAutoMipStations = metro::kAutoMipStations;
 inline constexpr std::size_t kMaxMipColumns = metro::kMaxMipColumns;
 std::shared_ptr<const CityLayout> compute_city_layout(const CityMetroData& data, const LayoutRequest& req,

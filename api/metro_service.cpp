@@ -308,13 +308,11 @@ std::shared_ptr<const poi::ClusterTree> MetroService::tree_for(const std::string
   return tree;
 }
 
-namespace {
-
 // Networks the default request polishes with the MIP (in the background): the policy the
 // synchronous auto polish had (api/metro_layout.hpp); larger ones are answered fast only.
-bool improvable(const CityMetroData& data) { return data.city->info.station_count <= kAutoMipStations; }
-
-}  // namespace
+bool MetroService::improvable(const CityMetroData& data) const {
+  return limits_.improve_mip_s > 0 && data.city->info.station_count <= kAutoMipStations;
+}
 
 // What is computed for a request. A default (solver=auto) one is the fast layout alone: the
 // MIP would keep the request waiting for up to a second or more, so it runs afterwards in the

@@ -41,8 +41,9 @@ struct MetroLimits {
   //     come first; the CBC child inherits the nice value);
   //   - at most `improve_queue` waiting, one per cache key; a new one at a full queue drops
   //     the oldest waiting one (counted; a later request for that layout schedules it again);
-  //   - CBC gets `improve_mip_s`, what the synchronous auto polish had: with larger limits it
-  //     overran them in its root node on the sample cities and was killed, winning nothing;
+  //   - CBC gets `improve_mip_s` (serve --improve-mip): with the place term and the guards of
+  //     metro/mip_polish.hpp it wins on Chicago (20 -> 15 bends, same displacement) after
+  //     7-10 s and on Freiburg after 4-6 s; with 0.5 s (the old limit) it won nowhere;
   //   - its child is killed once it has used `improve_mip_grace_s` of CPU time past that
   //     (api::ChildClock::cpu; requests get 1 s of wall time): CBC overruns its limit in the
   //     root LP (1.2-1.5 s for 0.5 s when idle), and a nice-10 child on a busy machine gets
@@ -50,7 +51,7 @@ struct MetroLimits {
   //   - an improvement of a city version replaced meanwhile is dropped; shutdown stops the
   //     running one (its CBC child is killed) and drops the waiting ones.
   std::size_t improve_queue = 8;
-  double improve_mip_s = 0.5;
+  double improve_mip_s = 10.0;  // 0: no background improvements (default answers say "none")
   double improve_mip_grace_s = 3.0;
 };
 
@@ -131,6 +132,7 @@ class MetroService {
   void mark_not_improved(const std::string& key);
   void replace_layout(const std::string& key, const std::shared_ptr<const CityLayout>& layout);
   bool current_version(const CityMetroData& data);
+  bool improvable(const CityMetroData& data) const;
 
   Catalog& catalog_;
   MipSolver mip_;

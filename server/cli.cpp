@@ -89,6 +89,8 @@ int cmd_serve(const std::vector<std::string>& args) {
        "concurrent crowd streams (each renders on the one render thread)")
       ("crowd-max-subdivision", po::value(&c.crowd_max_subdivision)->default_value(c.crowd_max_subdivision),
        "cap on the Loop subdivision of crowd characters (-1: the scene's; 0: base meshes, fast to prepare)")
+      ("improve-mip", po::value(&c.improve_mip_s)->default_value(c.improve_mip_s),
+       "CPU seconds the background MIP may take to improve a default metro layout (0: no improvements; at most 600)")
       ("io-threads", po::value(&c.io_threads)->default_value(c.io_threads), "threads for network IO")
       ("compute-threads", po::value(&c.compute_threads)->default_value(c.compute_threads),
        "threads for expensive requests: layouts, deformations, rasters, clusters, imports (0: two per core)")
@@ -176,6 +178,10 @@ int cmd_serve(const std::vector<std::string>& args) {
   }
   if (!(c.compute_deadline_s > 0) || !(c.compute_timeout_s > 0) || !(c.read_deadline_s > 0)) {
     std::fprintf(stderr, "tourmap serve: --compute-deadline, --compute-timeout and --read-deadline must be positive\n");
+    return 2;
+  }
+  if (!(c.improve_mip_s >= 0 && c.improve_mip_s <= 600)) {
+    std::fprintf(stderr, "tourmap serve: --improve-mip must be 0 (off) to 600 seconds\n");
     return 2;
   }
   if (c.compute_threads == 0) c.compute_threads = 2 * std::max(1u, std::thread::hardware_concurrency());

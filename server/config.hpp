@@ -40,6 +40,7 @@ struct Config {
   std::size_t max_ws_connections = 256;
   unsigned max_crowd_streams = 4;         // WS /api/v1/crowd/stream refuses more (close 1013)
   int crowd_max_subdivision = -1;         // caps the scenes' Loop levels (-1: as the scene says)
+  double improve_mip_s = 10.0;            // CBC CPU seconds of a background layout improvement (0: none)
   double rate_limit = 200.0;              // requests per second per client address (0: no limit)
   double rate_burst = 400.0;              // requests a client may make at once (token bucket size)
   std::string cors_origins;               // comma-separated allowed origins, "*" any; empty: no CORS

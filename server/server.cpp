@@ -153,7 +153,8 @@ int serve(const Config& config, const std::function<void(unsigned short)>& on_li
   api::Catalog catalog(db);
   ServerState state(config);  // declared before the io_context: sessions refer to it until the end
   api::DeformService deform(catalog);
-  const api::MetroLimits metro_limits;
+  api::MetroLimits metro_limits;
+  metro_limits.improve_mip_s = config.improve_mip_s;
   api::MetroService metro(catalog, api::child_process_mip_solver("/proc/self/exe"), metro_limits,
                           api::child_process_mip_solver("/proc/self/exe", metro_limits.improve_mip_grace_s,
                                                                        api::ChildClock::cpu));

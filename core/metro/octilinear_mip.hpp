@@ -28,6 +28,7 @@ namespace tourmap::metro {
 
 struct MipLayoutParams {
   double w_bend = 1.0, w_topo = 50.0, w_length = 1.0;
+  double w_place = 0.0;  // per l_const a station moves from the start, in x and in y (0: off)
   double l_const = 10.0;
 };
 

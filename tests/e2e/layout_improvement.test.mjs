@@ -4,9 +4,9 @@
 // improved layout and morphs it in: the drawn geometry changes, the page is not reloaded and
 // the user's zoom stays. At desktop (1280x800) and phone (390x844) sizes.
 //
-// The city is Freiburg (74 stations): the MIP started from the fast layout improves its
-// objective within CBC's 0.5 s (optimal in about 1.3 s), also with another process busy (the
-// fast layout's budget is CPU time, so it is the same layout under load). The test holds the
+// The city is Freiburg (74 stations): the MIP started from the fast layout wins within the
+// server's 10 s of CBC CPU (optimal in 4-7 s; one bend fewer, stations kept in place), also
+// with another process busy (the fast layout is the same under load: its rounds are counted). The test holds the
 // event in the page's WebSocket (Playwright's routeWebSocket) until it has looked at the fast
 // layout, because the real one can arrive before the first morph is over. The phone size
 // gets a new version of the city (imported again), so that its default layout is fast again.
@@ -22,7 +22,7 @@ import { join, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { bin, check, checkNoConsoleErrors, openApp, openPage, runTest, serveSampleData, STEP_TIMEOUT_MS } from './support.mjs';
 
-const OVERALL_TIMEOUT_MS = 150_000;
+const OVERALL_TIMEOUT_MS = 240_000;
 /** As support.mjs finds the sample data (TOURMAP_DATA_DIR, else ../shared/data next to the repository). */
 const dataDir = resolve(process.env.TOURMAP_DATA_DIR ?? fileURLToPath(new URL('../../../shared/data', import.meta.url)));
 const CITY = 'freiburg';
@@ -31,8 +31,8 @@ const SIZES = [
   { name: 'desktop', width: 1280, height: 800 },
   { name: 'phone', width: 390, height: 844 },
 ];
-/** How long the server may take to improve the layout (about 0.5 s when idle). */
-const IMPROVEMENT_TIMEOUT_MS = 60_000;  // a nice-10 job beside other tests gets little CPU
+/** How long the server may take to improve the layout (about 7 s when idle). */
+const IMPROVEMENT_TIMEOUT_MS = 90_000;  // a nice-10 job beside other tests gets little CPU
 /** How often the server looks for imports (server/server.cpp, EventHub). */
 const CATALOG_POLL_MS = 2000;
 

@@ -3,16 +3,18 @@
 // event on WS /api/v1/events announces it, and the same request then gets the improved layout.
 //
 // The network is Freiburg's (74 stations, imported by each test): the MIP started from the fast
-// layout improves its objective within CBC's 0.5 s (solved to optimality in about 1.3 s, from 5
-// bends along lines to 2). Earlier networks stopped serving as the fast path got better: a
-// hand-made 10-station one (its fast layout has no bend), then Lisbon (the MIP's optimum adds a
-// crossing, so it is refused). Should the MIP no longer win on Freiburg, the first test says so
-// and another network is needed.
+// layout, with its place term and the acceptance guards (metro/mip_polish.hpp), wins within the
+// server's 10 s of CBC CPU (optimal in 4-7 s: 33 -> 32 bends along lines, displacement 0.47 ->
+// 0.52 mean edges, the smallest gap kept at 0.53). Earlier networks stopped serving as the fast
+// path got better: a hand-made 10-station one (its fast layout has no bend), then Lisbon (the
+// MIP's optimum adds a crossing, so it is refused). Should the MIP no longer win on Freiburg,
+// the first test says so and another network is needed (Chicago: 20 -> 15 bends in 7-10 s).
 
 #include "live_server.hpp"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <regex>
 #include <string>
@@ -26,10 +28,10 @@ using Clock = std::chrono::steady_clock;
 
 constexpr const char* kCity = "freiburg";
 const std::string kLayout = "/api/v1/cities/freiburg/layout";
-// How long a background job may take here. About 1.5 s idle, but the job runs at nice 10 and
+// How long a background job may take here. About 7 s idle, but the job runs at nice 10 and
 // CBC's budget is CPU time (api/mip_runner.hpp): beside other tests on both cores it gets a
 // tenth of a core or less, and it still must finish and win.
-constexpr std::chrono::seconds kJobWait{90};
+constexpr std::chrono::seconds kJobWait{120};
 
 // Imports Freiburg (again: a new city version) into the running server's database.
 void import_freiburg(const LiveServer& live) {
@@ -114,8 +116,18 @@ TEST(LayoutImprovement, DefaultLayoutIsFastThenImprovedAndAnnounced) {
   EXPECT_EQ(improved["solver"]["improvement"], "applied");
   EXPECT_EQ(improved["solver"]["mip"]["accepted"], true);
   EXPECT_EQ(improved["quality"], event["quality"]);
-  EXPECT_LE(improved["quality"]["bends"].get<int>(), fast["quality"]["bends"].get<int>());
-  EXPECT_LE(improved["quality"]["crossings"].get<int>(), fast["quality"]["crossings"].get<int>());
+  // Kept only as a better map (metro/mip_polish.hpp): fewer bends, no more crossings, the
+  // stations' room and their place in the geography kept.
+  const auto& q = improved["quality"];
+  const auto& f = fast["quality"];
+  EXPECT_LT(q["bends"].get<int>(), f["bends"].get<int>());
+  EXPECT_LE(q["crossings"].get<int>(), f["crossings"].get<int>());
+  EXPECT_LE(q["added_crossings"].get<int>(), f["added_crossings"].get<int>());
+  EXPECT_LE(q["order_violations"].get<int>(), f["order_violations"].get<int>());
+  EXPECT_GE(q["min_station_gap_ratio"].get<double>(), std::min(f["min_station_gap_ratio"].get<double>(), 0.5) - 1e-3);
+  EXPECT_GE(q["min_edge"].get<double>() / q["mean_edge"].get<double>(),
+            std::min(f["min_edge"].get<double>() / f["mean_edge"].get<double>(), 0.4) - 1e-3);
+  EXPECT_LE(q["mean_displacement"].get<double>(), 1.1 * f["mean_displacement"].get<double>() + 1e-3);
   EXPECT_NE(improved["stations"], fast["stations"]);  // the stations moved
   EXPECT_NE(second.header("etag"), first.header("etag"));
   wait_idle(live, 10s);  // the event goes out just before the job ends
@@ -165,7 +177,7 @@ TEST(LayoutImprovement, ImprovementOfAnOlderCityVersionIsDropped) {
   import_freiburg(live);
   WsClient ws(live.port(), "/api/v1/events");
   ASSERT_EQ(nlohmann::json::parse(ws.receive(5s))["type"], "hello");
-  // Vienna's improvement goes first and takes a while (fast path, then CBC for its 0.5 s
+  // Vienna's improvement goes first and takes a while (fast path, then CBC for up to its 10 s
   // limit in a child process); Freiburg's waits behind it, and the city is imported again
   // meanwhile.
   ASSERT_EQ(live.get_json("/api/v1/cities/vienna/layout")["solver"]["improvement"], "scheduled");
@@ -193,7 +205,7 @@ TEST(LayoutImprovement, ShutdownStopsARunningImprovement) {
   const double took_s = std::chrono::duration<double>(Clock::now() - started).count();
   EXPECT_EQ(stopped.exit_code, 0) << stopped.output;
   EXPECT_NE(stopped.output.find("shutdown: done"), std::string::npos) << stopped.output;
-  // The CBC child is killed at once (its budget and grace would be 3.5 s).
+  // The CBC child is killed at once (its budget and grace would be 13 s).
   EXPECT_LT(took_s, 2.0) << stopped.output;
   EXPECT_EQ(stopped.output.find("failed"), std::string::npos) << stopped.output;
 }

@@ -1,5 +1,6 @@
 #include "metro/layout_quality.hpp"
 #include "metro/mip_model.hpp"
+#include "metro/mip_polish.hpp"
 #include "metro/octilinear_grid.hpp"
 #include "metro/octilinear_mip.hpp"
 #include "metro/prelayout.hpp"
@@ -110,6 +111,64 @@ TEST(OctilinearMip, KeepsViennasCircularOrders) {
   EXPECT_EQ(q.octilinear_share, 1.0);
   EXPECT_EQ(q.order_violations, 0u);
 }
+
+// The square loop with a tail of the first test, laid out by the fast path.
+LayoutGraph loop_with_tail() {
+  LayoutGraph g;
+  g.pos = {{0, 0}, {1000, 100}, {1100, 1000}, {0, 900}, {-1500, -400}, {-3000, -800}, {-4500, -1200}};
+  g.edges = {{0, 1}, {1, 2}, {2, 3}, {3, 0}, {0, 4}, {4, 5}, {5, 6}};
+  g.edge_lines = {{0}, {0}, {0}, {0}, {1}, {1}, {1}};
+  g.min_length.assign(g.edges.size(), 10.0);
+  return g;
+}
+
+TEST(OctilinearMip, PlaceTermPricesEveryStationsMove) {
+  const auto g = loop_with_tail();
+  const auto start = route_octilinear(g, stress_layout(g, scale_to_lengths(g)), {});
+  const auto free = build_octilinear_mip(g, start, {});
+  MipLayoutParams held;
+  held.w_place = 1000;
+  const auto mip = build_octilinear_mip(g, start, held);
+  // Two bound columns per station, contracted ones included, costing nothing at the start.
+  EXPECT_EQ(mip.model.columns(), free.model.columns() + 2 * g.pos.size());
+  EXPECT_NEAR(mip.start_objective, free.start_objective, 1e-9);
+  EXPECT_LT(max_violation(mip.model, mip.model.start), 1e-9);
+  // At 1000 bends per l_const no station moves: the optimum is the start's drawing.
+  const auto r = solve_with_cbc(mip.model, 10, 0);
+  ASSERT_FALSE(r.x.empty());
+  const auto at_start = decode_octilinear_mip(mip, mip.model.start, g.pos.size());
+  const auto solved = decode_octilinear_mip(mip, r.x, g.pos.size());
+  for (std::size_t v = 0; v < g.pos.size(); ++v) {
+    EXPECT_NEAR(solved.pos[v].x, at_start.pos[v].x, 1e-4) << v;
+    EXPECT_NEAR(solved.pos[v].y, at_start.pos[v].y, 1e-4) << v;
+  }
+}
+
+TEST(MipPolish, KeepsOnlyALayoutWithFewerBends) {
+  // A "solver" that returns the start with a lower objective: same bends, so it is refused
+  // and the layout stays as it was, with the reason said.
+  const auto g = loop_with_tail();
+  auto layout = route_octilinear(g, stress_layout(g, scale_to_lengths(g)), {});
+  auto quality = measure_layout(g, layout);
+  const auto before = layout.pos;
+  const MipSolveFn start_again = [](const MipModel& m, double, double) {
+    MipResult r;
+    r.status = "optimal";
+    r.x = m.start;
+    r.objective = -1e9;
+    return r;
+  };
+  const auto report = polish_with_mip(g, layout, quality, 10.0, 1.0, start_again);
+  EXPECT_TRUE(report.solved);
+  EXPECT_FALSE(report.accepted);
+  EXPECT_NE(report.reason.find("bends"), std::string::npos) << report.reason;
+  EXPECT_EQ(layout.pos.size(), before.size());
+  for (std::size_t v = 0; v < before.size(); ++v) {
+    EXPECT_EQ(layout.pos[v].x, before[v].x);
+    EXPECT_EQ(layout.pos[v].y, before[v].y);
+  }
+}
+
 
 }  // namespace
 }  // namespace tourmap::metro
