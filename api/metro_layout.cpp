@@ -68,6 +68,11 @@ nlohmann::json quality_json(const metro::LayoutQuality& q, const metro::CompareM
 nlohmann::json solver_json(const metro::SolverReport& s) {
   nlohmann::json out = {{"kind", s.kind}, {"status", s.status}, {"gap", nullptr}};
   if (s.gap) out["gap"] = *s.gap;
+  if (s.label_room.status != "not_run") {
+    const auto& r = s.label_room;
+    out["label_room"] = {{"status", r.status}, {"rooms", r.rooms}, {"unnamed_before", r.unnamed_before},
+                         {"unnamed_after", r.unnamed_after}, {"rounds", r.rounds}, {"kept", r.kept}};
+  }
   if (!s.mip) return out;
   const auto& m = *s.mip;
   nlohmann::json info = {{"status", m.status}};
@@ -216,6 +221,7 @@ metro::CityLayoutParams layout_params(const LayoutRequest& req, const MipSolver&
   p.solver = req.solver;
   p.time_limit_s = req.time_limit_s;
   p.mip = mip;
+  p.label_room_ms = req.label_room ? metro::kLabelRoomCpuMs : 0.0;
   return p;
 }
 

@@ -28,6 +28,9 @@ struct LayoutRequest {
   RankSource rank = RankSource::automatic;
   metro::WorthParams worth;
   double l_const = 10.0;
+  // Not a parameter: the background improvement's (MetroService::improve) request also makes
+  // room in the layout for names left out (metro::CityLayoutParams::label_room_ms).
+  bool label_room = false;
   std::string canonical() const;  // cache key part
 };
 

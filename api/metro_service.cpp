@@ -308,11 +308,9 @@ std::shared_ptr<const poi::ClusterTree> MetroService::tree_for(const std::string
   return tree;
 }
 
-// Networks the default request polishes with the MIP (in the background): the policy the
-// synchronous auto polish had (api/metro_layout.hpp); larger ones are answered fast only.
-bool MetroService::improvable(const CityMetroData& data) const {
-  return limits_.improve_mip_s > 0 && data.city->info.station_count <= kAutoMipStations;
-}
+// Every default layout is improved in the background (the MIP up to kAutoMipStations
+// stations, room for names on any), unless improvements are off.
+bool MetroService::improvable(const CityMetroData&) const { return limits_.improve_mip_s > 0; }
 
 // What is computed for a request. A default (solver=auto) one is the fast layout alone: the
 // MIP would keep the request waiting for up to a second or more, so it runs afterwards in the
@@ -350,11 +348,13 @@ bool MetroService::current_version(const CityMetroData& data) {
   return version && *version == data.city->info.version;
 }
 
-// A background job (on the improver's thread): the MIP polish of the default layout for
-// `req`, with the same parameters and a CBC limit of MetroLimits::improve_mip_s. When its
-// result is accepted (solver.kind "mip": it lowers the objective without more crossings,
-// order violations or bends) it replaces the cached layout and is announced; otherwise the
-// cached fast layout is marked as final.
+// A background job (on the improver's thread): the default layout for `req` computed again
+// with the same parameters, polished by the MIP (networks up to kAutoMipStations stations, CBC
+// limited to MetroLimits::improve_mip_s) and given room for the names left out where symbols
+// are 12 px across (metro/city_layout.hpp). When either wins (solver.kind "mip": fewer bends
+// and no worse otherwise, metro/mip_polish.hpp; or solver.label_room.kept: more stations
+// named, the layout's guarantees kept) it replaces the cached layout and is announced;
+// otherwise the cached fast layout is marked as final.
 void MetroService::improve(const std::shared_ptr<const CityMetroData>& data, const LayoutRequest& req,
                            const std::atomic<bool>& stop) {
   const auto key = layout_key(*data, req);
@@ -373,7 +373,9 @@ void MetroService::improve(const std::shared_ptr<const CityMetroData>& data, con
                        std::chrono::duration<double>(req.time_limit_s + limits_.improve_mip_s + 30.0));
   util::StopScope scope(token);
   LayoutRequest polish = req;
-  polish.solver = LayoutRequest::Solver::mip;
+  polish.solver = data->city->info.station_count <= kAutoMipStations ? LayoutRequest::Solver::mip
+                                                                     : LayoutRequest::Solver::fast;
+  polish.label_room = true;
   const double cap = limits_.improve_mip_s;
   const MipSolver capped = [this, cap](const metro::MipModel& model, double time_limit_s, double gap) {
     return improve_mip_(model, std::min(time_limit_s, cap), gap);
@@ -386,7 +388,9 @@ void MetroService::improve(const std::shared_ptr<const CityMetroData>& data, con
     return;
   }
   const auto& solver = doc.at("solver");
-  if (solver.value("kind", "") != "mip") {
+  const bool mip_won = solver.value("kind", "") == "mip";
+  const bool names_won = solver.contains("label_room") && solver["label_room"].value("kept", 0) > 0;
+  if (!mip_won && !names_won) {
     ++not_improved_;
     mark_not_improved(key);
     return;
@@ -396,13 +400,14 @@ void MetroService::improve(const std::shared_ptr<const CityMetroData>& data, con
   if (!event_sink_) return;
   auto params = doc.at("params");
   params["solver"] = "auto";
+  nlohmann::json event_solver = {{"kind", solver.at("kind")}, {"status", solver.at("status")}, {"gap", solver.at("gap")}};
+  if (solver.contains("label_room")) event_solver["label_room"] = solver["label_room"];
   const nlohmann::json event = {{"type", "layout_improved"},
                                 {"city", data->city->info.id},
                                 {"version", data->city->info.version},
                                 {"key", req.canonical()},
                                 {"params", std::move(params)},
-                                {"solver",
-                                 {{"kind", "mip"}, {"status", solver.at("status")}, {"gap", solver.at("gap")}}},
+                                {"solver", event_solver},
                                 {"quality", doc.at("quality")}};
   event_sink_(event.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
 }

@@ -2,7 +2,9 @@
 
 #include "metro/bend_reduction.hpp"
 #include "metro/prelayout.hpp"
+#include "metro/station_spacing.hpp"
 #include "util/elapsed.hpp"
+#include "util/thread_cpu_clock.hpp"
 
 #include <algorithm>
 #include <future>
@@ -15,6 +17,98 @@ namespace {
 
 using util::Clock;
 using util::ms_since;
+
+// Names left out where symbols are 12 px across (from the first zoom with names round the
+// ring), at that zoom and the larger ones.
+std::size_t unnamed_from(const std::vector<LabelScale>& scales, std::size_t first) {
+  std::size_t n = 0;
+  for (std::size_t k = first; k < scales.size(); ++k) n += scales[k].unlabelled;
+  return n;
+}
+
+// Room for the names left out where symbols are 12 px across (issue 14): rounds of the spacing
+// program that also keep the place each such name wants clear of lines and symbols
+// (metro/station_spacing.hpp, make_room_for_labels). Each round tries the points within 5, 10
+// and 20 mean edges of a wanted name moving of their own (the rest moves only with the whole
+// map): which one wins depends on the network (London, visual-worth lengths: 17 -> 8 unnamed at
+// 75 px with 10, none with 20; uniform lengths: 16 -> 8 with 20, none with 10). A round keeps
+// the try that names the most stations at those zooms, if it names more than before and keeps
+// the layout's guarantees against the layout before any room was made: octilinear, no added
+// crossing or order violation more, the smallest gap at least min(it, 0.5) mean edges, at most
+// 1.1 times its displacement (the MIP's guards, metro/mip_polish.hpp). Within `budget_ms` of
+// this thread's CPU time (a try in progress finishes).
+void make_room_for_names(const LayoutGraph& g, Layout& layout, const StationLabelInput& names, double budget_ms,
+                         CityLayoutResult& out) {
+  const LabelStyle style;
+  std::size_t first = 0;
+  while (first < kLabelMeanEdgesPx.size() && kLabelMeanEdgesPx[first] < style.ring_min_mean_edge_px) ++first;
+  auto& report = out.solver.label_room;
+  if (first >= out.labels.size()) return;
+  report.unnamed_before = report.unnamed_after = out.labels[first].unlabelled;
+  report.status = "not_needed";
+  if (out.labels[first].wanted.empty()) return;
+  const auto cpu_started = util::ThreadCpuClock::now();
+  const auto used_ms = [&] {
+    return std::chrono::duration<double, std::milli>(util::ThreadCpuClock::now() - cpu_started).count();
+  };
+  const LayoutQuality base = out.quality;
+  const auto sound = [&](const LayoutQuality& q) {
+    return q.octilinear_share >= 1 - 1e-9 && q.added_crossings <= base.added_crossings &&
+           q.order_violations <= base.order_violations &&
+           q.min_station_gap_ratio >= std::min(base.min_station_gap_ratio, kMipKeepGap) - 1e-3 &&
+           q.mean_displacement <= base.mean_displacement * kMipKeepDisplacement + 1e-3;
+  };
+  constexpr int kMaxRounds = 6;
+  constexpr double kMoveRadii[] = {5.0, 10.0, 20.0};
+  report.status = "no_gain";
+  while (report.rounds < kMaxRounds && !out.labels[first].wanted.empty()) {
+    const auto& scale = out.labels[first];
+    std::vector<LabelRoom> rooms;
+    for (const auto& l : scale.wanted) rooms.push_back({l.node, l.x0, l.y0, l.x1, l.y1});
+    std::vector<LabelRoom> placed;
+    for (const auto& l : scale.labels) placed.push_back({l.node, l.x0, l.y0, l.x1, l.y1});
+    if (report.rounds == 0) report.rooms = rooms.size();
+    ++report.rounds;
+    struct Try {
+      Layout layout;
+      LayoutQuality quality;
+      std::vector<LabelScale> labels;
+      std::size_t unnamed;
+    };
+    std::optional<Try> best;
+    for (const double radius : kMoveRadii) {
+      if (used_ms() >= budget_ms) {
+        report.status = "no_time";
+        break;
+      }
+      LabelRoomParams room;
+      room.scale_px = scale.mean_edge_px;
+      room.symbol_px = scale.symbol_px;
+      room.line_spacing_px = style.line_spacing_px;
+      room.clearance_px = style.clearance_px;
+      room.label_gap_px = style.label_gap_px;
+      room.move_radius = radius;
+      SpacingParams spacing;
+      spacing.time_limit_ms = budget_ms - used_ms();
+      auto candidate = make_room_for_labels(g, layout, rooms, placed, room, spacing);
+      if (!candidate) continue;
+      auto quality = measure_layout(g, *candidate);
+      if (!sound(quality)) continue;
+      auto labels = place_station_labels(g, *candidate, names, kLabelMeanEdgesPx);
+      const auto unnamed = unnamed_from(labels, first);
+      if (unnamed < (best ? best->unnamed : unnamed_from(out.labels, first)))
+        best = Try{std::move(*candidate), quality, std::move(labels), unnamed};
+    }
+    if (!best) break;
+    layout = std::move(best->layout);
+    out.labels = std::move(best->labels);
+    out.quality = best->quality;
+    ++report.kept;
+    report.unnamed_after = out.labels[first].unlabelled;
+    if (report.status == "no_time") break;
+  }
+  if (report.kept > 0) report.status = "kept";  // a later round may have found no more
+}
 
 // The MIP's time budget in seconds (see the header for the policy); none: no MIP.
 std::optional<double> mip_budget(const CityLayoutParams& p, std::size_t stations, double fast_ms) {
@@ -126,7 +220,13 @@ CityLayoutResult layout_city(const CityMetroInput& in, const std::vector<model::
   }
   out.labels = place_station_labels(g, layout, names, kLabelMeanEdgesPx);
   out.timing.labels = ms_since(stage2);
+  // The order reads the layout: it is done before the layout makes room for names. The room
+  // keeps every segment's direction, so the order (of lines along each edge, by the edges'
+  // circular order at the stations) stays valid.
   std::tie(out.line_order, out.timing.line_order) = ordering.get();
+  stage2 = Clock::now();
+  if (params.label_room_ms > 0) make_room_for_names(g, layout, names, params.label_room_ms, out);
+  out.timing.label_room = ms_since(stage2);
   out.compare = metro_compare_metrics(g, in.is_station, layout);
   out.timing.layout = ms_since(t);
 

@@ -29,6 +29,10 @@ namespace tourmap::metro {
 enum class LayoutSolver { automatic, fast, mip };  // the order is in stored layouts' cache keys
 inline constexpr std::size_t kAutoMipStations = 250;
 
+// CPU time for making room for names when asked (CityLayoutParams::label_room_ms; London:
+// 1-3 s in up to 6 rounds of 3 tries, 200-300 ms each; the budget is a backstop).
+inline constexpr double kLabelRoomCpuMs = 5000;
+
 struct CityLayoutParams {
   bool worth_lengths = true;  // visual-worth lengths (eq. 5.4), else uniform l_const (the paper's DF4)
   double l_const = 10.0;
@@ -37,6 +41,17 @@ struct CityLayoutParams {
   LayoutSolver solver = LayoutSolver::automatic;
   double time_limit_s = 10.0;
   MipSolveFn mip;  // needed when the MIP may run; empty: no MIP (as "fast")
+  // CPU time for making room in the layout for names left out (0: none; the server's
+  // background improvement sets it, as it costs 100-400 ms that a first answer cannot spend).
+  double label_room_ms = 0;
+};
+
+// Room made in the layout for the names left out where symbols are 12 px across (issue 14).
+struct LabelRoomReport {
+  std::string status = "not_run";  // "not_run", "not_needed", "kept", "no_gain", "no_time"
+  std::size_t rooms = 0;              // stations asked room for (in the first round)
+  std::size_t unnamed_before = 0, unnamed_after = 0;  // at the first such zoom
+  int rounds = 0, kept = 0;
 };
 
 struct SolverReport {
@@ -44,6 +59,7 @@ struct SolverReport {
   std::string status;           // that solver's status
   std::optional<double> gap;    // the MIP's relative gap (kind "mip")
   std::optional<MipReport> mip;  // when the MIP was considered
+  LabelRoomReport label_room;    // room made for names (CityLayoutParams::label_room_ms)
 };
 
 struct CityLayoutTimings {  // ms
@@ -52,6 +68,7 @@ struct CityLayoutTimings {  // ms
   double route = 0, bends = 0, spacing = 0, measure = 0;
   double line_order = 0;  // the lines' order along shared track (after the MIP, on the final layout)
   double labels = 0;      // the station names' placements
+  double label_room = 0;  // making room for the names left out, and placing them again
 };
 
 struct CityLayoutResult {

@@ -141,6 +141,7 @@ class Grid {
 struct Segment {
   XY a, b;
   std::size_t lines;
+  std::uint32_t edge;
 };
 
 // The eight sides, counter-clockwise from east, and how much each reads worse than east; a
@@ -238,7 +239,7 @@ class Placer {
       const auto& path = L.paths[e];
       const std::size_t n = e < in.lines.size() ? std::max<std::size_t>(1, in.lines[e]) : 1;
       for (std::size_t i = 1; i < path.size(); ++i) {
-        segments_.push_back({path[i - 1], path[i], n});
+        segments_.push_back({path[i - 1], path[i], n, e});
         total += std::hypot(path[i].x - path[i - 1].x, path[i].y - path[i - 1].y);
       }
       auto [u, v] = g.edges[e];
@@ -330,6 +331,10 @@ class Placer {
         out.labels.push_back(l);
         if (l.leader) ++out.leaders;
       }
+    if (ring_)
+      for (auto v : left_out)
+        if (placed_[v] < 0)
+          if (const int c = roomiest_place(v); c >= 0) out.wanted.push_back(candidate(v, c));
     out.unlabelled = unlabelled;
     return out;
   }
@@ -538,6 +543,39 @@ class Placer {
   bool clear_of_map(std::uint32_t v, int c) const {
     const auto l = candidate(v, c);
     return clear_of_map(rect_of(v, l)) && leader_clear(v, leader_of(v, l));
+  }
+
+  // The place of v (one of the sixteen, on one line or two) that the fewest lines and symbols
+  // stand in, none of them v's own lines; the cheapest of those; -1 when v's lines cross all.
+  int roomiest_place(std::uint32_t v) const {
+    int best = -1;
+    std::pair<std::size_t, double> best_key{std::numeric_limits<std::size_t>::max(), 0};
+    for (int c = 0; c < kPlaces; ++c) {
+      if (!valid(v, c) || far(c)) continue;
+      const Rect r = rect_of(v, candidate(v, c));
+      std::size_t in_the_way = 0;
+      bool own = false;
+      segment_grid_.near(expanded(r, widest_half()), [&](int i) {
+        const auto& s = segments_[static_cast<std::size_t>(i)];
+        const double half = (static_cast<double>(s.lines) * style_.line_spacing_px / 2 + style_.clearance_px) / scale_;
+        if (rect_segment_distance(r, s.a, s.b) >= half) return;
+        const auto [a, b] = g_.edges[s.edge];
+        if (a == v || b == v) own = true;
+        else ++in_the_way;
+      });
+      if (own) continue;
+      const double reach = (symbol_px_ + static_cast<double>(max_lines()) * style_.line_spacing_px + style_.clearance_px) / scale_;
+      symbol_grid_.near(expanded(r, reach), [&](int i) {
+        const auto u = static_cast<std::uint32_t>(i);
+        if (u != v && rect_point_distance(r, L_.pos[u]) < (reach_px(u) + style_.clearance_px) / scale_) ++in_the_way;
+      });
+      const std::pair<std::size_t, double> key{in_the_way, candidate_cost(v, c)};
+      if (key < best_key) best_key = key, best = c;
+    }
+    return best;
+  }
+  double widest_half() const {
+    return (static_cast<double>(max_lines()) * style_.line_spacing_px / 2 + style_.clearance_px) / scale_;
   }
 
   // Whether any place of v is clear of lines and symbols (the names aside).

@@ -75,6 +75,10 @@ struct LabelScale {
   std::size_t unlabelled = 0;   // named stations without a label at this scale
   std::size_t no_room = 0;      // of those, how many have no place clear of lines and symbols
   std::size_t leaders = 0;      // labels on a leader
+  // From the zoom where names go round the ring on: for each station left unnamed, the place
+  // its name would take given room (the one the fewest lines and symbols stand in, none of
+  // them its own), for the layout to make room (metro/station_spacing.hpp, LabelRoom).
+  std::vector<PlacedLabel> wanted;
 };
 
 struct StationLabelInput {

@@ -408,6 +408,114 @@ std::vector<XY> points_of(const Program& prog, const Drawing& d, const std::vect
   return pt;
 }
 
+// One round's program around `d` (mean edge `mean`): its columns and rows, the pairs near each
+// other, whatever `more` adds, then the cuts until a solution needs none. The solution's
+// points, or none when the solver found none.
+template <typename More>
+std::optional<std::vector<XY>> solve_round(const LayoutGraph& g, const Drawing& d, double mean, const SpacingParams& p,
+                                           double left_ms, SpacingReport& report, More&& more) {
+  auto prog = build_program(g, d, mean, p);
+  PairRows pairs(g, d, prog, mean, p);
+  pairs.add_initial(prog.model);
+  more(prog.model, prog);
+  // The round in progress may finish past the budget (CLP counts the process's CPU time, which
+  // other threads advance too).
+  LpSession lp(prog.model);
+  auto solved = lp.solve(left_ms / 1000.0 + 0.5);
+  std::vector<XY> pt;
+  for (int cut = 0; solved.status == "optimal"; ++cut) {
+    pt = points_of(prog, d, solved.x);
+    if (cut == p.max_cuts) break;  // the caller's acceptance test still guards the result
+    const auto added = pairs.add_cuts(lp, pt, solved.x[static_cast<std::size_t>(prog.mean)]);
+    if (added == 0) break;
+    report.cuts += added;
+    util::check_stop();
+    solved = lp.resolve(left_ms / 1000.0 + 0.5);
+  }
+  report.columns = lp.columns();
+  report.rows = lp.rows();
+  if (solved.status != "optimal") return std::nullopt;
+  return pt;
+}
+
+// Rows asking for each room's clearance (LabelRoom): for every segment of another edge and
+// every other station near the box now, w.(q - v) - M (w.o + need) / S >= 0, with w the
+// octilinear direction that separates box and obstacle best now, q the obstacle's point
+// nearest along w, o the box's corner furthest along w (px, y up; the box is o * M / S from
+// the station) and need the obstacle's half width and the clearance. Soft: a slack priced
+// w_room, at most what is missing now, so no obstacle comes closer to a box than it is.
+void add_room_rows(MipModel& m, const LayoutGraph& g, const Drawing& d, const Program& prog, double mean,
+                   const std::vector<LabelRoom>& rooms, const std::vector<LabelRoom>& placed, const LabelRoomParams& rp) {
+  const double k = mean / rp.scale_px;  // layout units per px now
+  const double reach = rp.radius * mean;
+  for (const auto& room : rooms) {
+    const auto v = room.station;
+    if (v >= d.stations) continue;
+    const XY at = d.pt[v];
+    const std::array<XY, 4> corner = {XY{room.x0, -room.y0}, XY{room.x1, -room.y0}, XY{room.x0, -room.y1},
+                                      XY{room.x1, -room.y1}};
+    std::vector<XY> box;
+    for (XY c : corner) box.push_back({at.x + c.x * k, at.y + c.y * k});
+    const double bx0 = at.x + room.x0 * k - reach, bx1 = at.x + room.x1 * k + reach;
+    const double by0 = at.y - room.y1 * k - reach, by1 = at.y - room.y0 * k + reach;
+    const auto near = [&](XY a, XY b) {
+      return std::max(a.x, b.x) >= bx0 && std::min(a.x, b.x) <= bx1 && std::max(a.y, b.y) >= by0 && std::min(a.y, b.y) <= by1;
+    };
+    const auto add = [&](std::initializer_list<std::uint32_t> ids, double need_px) {
+      std::vector<XY> pts;
+      for (auto id : ids) pts.push_back(d.pt[id]);
+      const int w = best_separation(pts, box).first;
+      std::uint32_t q = *ids.begin();
+      for (auto id : ids)
+        if (dot(kDir[w], d.pt[id]) < dot(kDir[w], d.pt[q])) q = id;
+      double far = -std::numeric_limits<double>::infinity();
+      for (XY c : corner) far = std::max(far, dot(kDir[w], c));
+      const double coef = (far + need_px) / rp.scale_px;
+      Expr e;
+      e.terms = {{prog.mean, -coef}};
+      add_difference(e, prog, d, kDir[w], q, v);
+      const double missing = coef * mean - dot(kDir[w], minus(d.pt[q], at));
+      if (missing > 0) e.terms.push_back({m.add_column(0, missing, rp.w_room, false, missing), 1.0});
+      m.add_row(std::move(e.terms), -e.constant, kFree);
+    };
+    for (const auto& s : d.seg) {
+      const auto [a, b] = g.edges[s.edge];
+      if (a == v || b == v || !near(d.pt[s.p], d.pt[s.q])) continue;
+      std::vector<std::uint32_t> lines = g.edge_lines[s.edge];
+      std::sort(lines.begin(), lines.end());
+      const auto n = static_cast<double>(std::unique(lines.begin(), lines.end()) - lines.begin());
+      add({s.p, s.q}, std::max(1.0, n) * rp.line_spacing_px / 2 + rp.clearance_px);
+    }
+    for (std::uint32_t u = 0; u < d.stations; ++u)
+      if (u != v && near(d.pt[u], d.pt[u])) add({u}, rp.symbol_px + rp.clearance_px);
+    // Other names (placed ones, and the rooms after this one): both boxes move with their
+    // stations, so w.(u - v) - M (max w.o_v - min w.o_u + gap) / S >= 0.
+    const auto corners = [](const LabelRoom& r) {
+      return std::array<XY, 4>{XY{r.x0, -r.y0}, XY{r.x1, -r.y0}, XY{r.x0, -r.y1}, XY{r.x1, -r.y1}};
+    };
+    for (const auto* list : {&placed, &rooms})
+      for (const auto& other : *list) {
+        if (other.station == v || other.station >= d.stations || (list == &rooms && &other <= &room)) continue;
+        const XY u = d.pt[other.station];
+        const auto oc = corners(other);
+        std::vector<XY> other_box;
+        for (XY c : oc) other_box.push_back({u.x + c.x * k, u.y + c.y * k});
+        if (!near(other_box[0], other_box[3])) continue;
+        const int w = best_separation(other_box, box).first;
+        double far = -std::numeric_limits<double>::infinity(), close = std::numeric_limits<double>::infinity();
+        for (XY c : corner) far = std::max(far, dot(kDir[w], c));
+        for (XY c : oc) close = std::min(close, dot(kDir[w], c));
+        const double coef = (far - close + rp.label_gap_px) / rp.scale_px;
+        Expr e;
+        e.terms = {{prog.mean, -coef}};
+        add_difference(e, prog, d, kDir[w], other.station, v);
+        const double missing = coef * mean - dot(kDir[w], minus(u, at));
+        if (missing > 0) e.terms.push_back({m.add_column(0, missing, rp.w_room, false, missing), 1.0});
+        m.add_row(std::move(e.terms), -e.constant, kFree);
+      }
+  }
+}
+
 }  // namespace
 
 SpacingReport space_stations(const LayoutGraph& g, Layout& layout, const SpacingParams& p) {
@@ -439,31 +547,13 @@ SpacingReport space_stations(const LayoutGraph& g, Layout& layout, const Spacing
       report.status = "skipped";
       break;
     }
-    auto prog = build_program(g, *drawing, mean, p);
-    PairRows pairs(g, *drawing, prog, mean, p);
-    pairs.add_initial(prog.model);
     ++report.rounds;
-    // The round in progress may finish past the budget (CLP counts the process's CPU time, which
-    // other threads advance too).
-    LpSession lp(prog.model);
-    auto solved = lp.solve(left_ms / 1000.0 + 0.5);
-    std::vector<XY> pt;
-    for (int cut = 0; solved.status == "optimal"; ++cut) {
-      pt = points_of(prog, *drawing, solved.x);
-      if (cut == p.max_cuts) break;  // the acceptance test below still guards the result
-      const auto added = pairs.add_cuts(lp, pt, solved.x[static_cast<std::size_t>(prog.mean)]);
-      if (added == 0) break;
-      report.cuts += added;
-      util::check_stop();
-      solved = lp.resolve(left_ms / 1000.0 + 0.5);
-    }
-    report.columns = lp.columns();
-    report.rows = lp.rows();
-    if (solved.status != "optimal") {
+    auto pt = solve_round(g, *drawing, mean, p, left_ms, report, [](MipModel&, const Program&) {});
+    if (!pt) {
       report.status = "solver";
       break;
     }
-    auto candidate = layout_of(*drawing, pt, layout);
+    auto candidate = layout_of(*drawing, *pt, layout);
     auto next = measure(g, candidate);
     const bool better = next.gap > now.gap + 1e-6 && next.order_violations <= now.order_violations &&
                         next.octilinear &&
@@ -481,6 +571,39 @@ SpacingReport space_stations(const LayoutGraph& g, Layout& layout, const Spacing
   }
   report.time_ms = ms_since(started);
   return report;
+}
+
+}  // namespace tourmap::metro
+
+namespace tourmap::metro {
+
+std::optional<Layout> make_room_for_labels(const LayoutGraph& g, const Layout& layout, const std::vector<LabelRoom>& rooms,
+                                           const std::vector<LabelRoom>& placed, const LabelRoomParams& room,
+                                           const SpacingParams& p) {
+  if (rooms.empty()) return std::nullopt;
+  auto drawing = decompose(g, layout);
+  const double mean = mean_edge(layout);
+  if (!drawing || !(mean > 0)) return std::nullopt;
+  SpacingReport report;
+  auto pt = solve_round(g, *drawing, mean, p, p.time_limit_ms, report, [&](MipModel& m, const Program& prog) {
+    add_room_rows(m, g, *drawing, prog, mean, rooms, placed, room);
+    // Only the points near a room move of their own (the rest moves only with the whole map,
+    // its scale and shift), so that the presolved program is a fraction of a spacing round's.
+    const double reach = room.move_radius * mean;
+    for (std::uint32_t i = 0; i < drawing->pt.size(); ++i) {
+      bool near = false;
+      for (const auto& r : rooms)
+        if (r.station < drawing->stations && dist(drawing->pt[i], drawing->pt[r.station]) <= reach) near = true;
+      if (near) continue;
+      for (int k = 0; k < 4; ++k) m.upper[static_cast<std::size_t>(prog.column[i] + k)] = 0;
+    }
+  });
+  if (!pt) return std::nullopt;
+  auto out = layout_of(*drawing, *pt, layout);
+  for (const auto& path : out.paths)
+    for (std::size_t i = 1; i < path.size(); ++i)
+      if (direction_of(path[i - 1], path[i]) < 0) return std::nullopt;
+  return out;
 }
 
 }  // namespace tourmap::metro

@@ -37,6 +37,8 @@
 #include "metro/layout_graph.hpp"
 
 #include <cstddef>
+#include <cstdint>
+#include <optional>
 #include <string>
 
 namespace tourmap::metro {
@@ -68,5 +70,33 @@ struct SpacingReport {
 // `g`: the graph (targets in g.min_length); `layout` octilinear, changed in place when a round
 // is kept (positions and paths; method and status stay).
 SpacingReport space_stations(const LayoutGraph& g, Layout& layout, const SpacingParams& params = {});
+
+// Room for a station's name (issue 14): a box in px from the station's point (x right, y
+// down) at the zoom where the mean edge is `scale_px` on screen, so in layout units it grows
+// with the mean edge M: the program keeps it clear of other edges' lines (by half their
+// bundle and `clearance_px`) and of other stations' symbols (`symbol_px` and the clearance).
+struct LabelRoom {
+  std::uint32_t station = 0;
+  double x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+};
+struct LabelRoomParams {
+  double scale_px = 75;          // the mean edge on screen the boxes are sized for
+  double line_spacing_px = 4;    // a bundle of n lines is n of these wide
+  double clearance_px = 1;
+  double label_gap_px = 2;       // between two names
+  double symbol_px = 8;          // a symbol's radius
+  double radius = 1.0;           // obstacles within this many mean edges of a box get a row
+  double move_radius = 5.0;      // points within this many mean edges of a room's station move; the rest stay
+  double w_room = 100.0;         // per unit of a box's clearance short of its need
+};
+
+// One round of the spacing program (the same columns, direction, floor and gap rows, with
+// cuts) that also asks each box in `rooms` for its clearance, as soft rows priced by w_room.
+// The caller decides whether to keep the result (the names it gains, the gap it keeps): none
+// when the program has no solution or the layout is not octilinear.
+// `placed`: the names placed at that zoom, kept clear of the rooms' boxes (by label_gap_px).
+std::optional<Layout> make_room_for_labels(const LayoutGraph& g, const Layout& layout, const std::vector<LabelRoom>& rooms,
+                                           const std::vector<LabelRoom>& placed, const LabelRoomParams& room,
+                                           const SpacingParams& params = {});
 
 }  // namespace tourmap::metro

@@ -138,6 +138,59 @@ TEST(LayoutImprovement, DefaultLayoutIsFastThenImprovedAndAnnounced) {
   EXPECT_EQ(clusters.status, 200) << clusters.body;
 }
 
+// The labels of the first zoom where names go round the ring (symbols 12 px across) and the
+// stations left unnamed there.
+std::pair<std::size_t, std::size_t> named_at_ring_zoom(const nlohmann::json& layout) {
+  for (const auto& scale : layout["labels"]["scales"])
+    if (scale["mean_edge_px"].get<double>() >= 60)
+      return {scale["labels"].size(), scale["unlabelled"].get<std::size_t>()};
+  return {0, 0};
+}
+
+TEST(LayoutImprovement, LondonGetsRoomForNamesInTheBackground) {
+  // London (302 stations) is too large for the MIP, but its centre leaves names out at 75 px:
+  // the background improvement makes room for them and announces the layout with more names.
+  LiveServer live;
+  const auto manifest = live.dir.write("london.json", R"({"cities":[{"id":"london","name":"London","metro":{
+    "format":"station-csvs","files":["metro/london.stations.csv","metro/london.lines.csv","metro/london.connections.csv"],
+    "attribution":"London Underground geographic data, Wikimedia Commons (CC BY-SA), via nicola/tubemaps"}}]})");
+  const auto imported = run_command({kTourmapBin, "import", "manifest", manifest, "--data-dir", data_dir(), "--db", live.db()});
+  ASSERT_EQ(imported.exit_code, 0) << imported.output;
+  WsClient ws(live.port(), "/api/v1/events");
+  ASSERT_EQ(nlohmann::json::parse(ws.receive(5s))["type"], "hello");
+
+  const auto fast = live.get_json("/api/v1/cities/london/layout");
+  EXPECT_EQ(fast["solver"]["kind"], "fast");
+  EXPECT_EQ(fast["solver"]["improvement"], "scheduled");
+  EXPECT_FALSE(fast["solver"].contains("label_room"));  // the first answer spends no time on it
+  const auto [fast_named, fast_unnamed] = named_at_ring_zoom(fast);
+  ASSERT_GT(fast_unnamed, 0u) << "London's centre is named in full at 75 px: this test needs another network";
+
+  const auto event = next_event(ws, "layout_improved", kJobWait);
+  ASSERT_FALSE(event.is_null()) << "no layout_improved event within " << kJobWait.count() << " s";
+  EXPECT_EQ(event["city"], "london");
+  EXPECT_EQ(event["solver"]["kind"], "fast");  // no MIP over 250 stations
+  EXPECT_EQ(event["solver"]["label_room"]["status"], "kept");
+
+  const auto improved = live.get_json("/api/v1/cities/london/layout");
+  EXPECT_EQ(improved["solver"]["improvement"], "applied");
+  const auto& room = improved["solver"]["label_room"];
+  EXPECT_GE(room["kept"].get<int>(), 1);
+  EXPECT_EQ(room["unnamed_before"].get<std::size_t>(), fast_unnamed);
+  const auto [named, unnamed] = named_at_ring_zoom(improved);
+  EXPECT_EQ(room["unnamed_after"].get<std::size_t>(), unnamed);
+  EXPECT_LT(unnamed, fast_unnamed);
+  EXPECT_GT(named, fast_named);
+  // Within the guards: nothing else got worse.
+  const auto& q = improved["quality"];
+  const auto& f = fast["quality"];
+  EXPECT_EQ(q["bends"], f["bends"]);  // every direction kept
+  EXPECT_LE(q["added_crossings"].get<int>(), f["added_crossings"].get<int>());
+  EXPECT_LE(q["order_violations"].get<int>(), f["order_violations"].get<int>());
+  EXPECT_GE(q["min_station_gap_ratio"].get<double>(), std::min(f["min_station_gap_ratio"].get<double>(), 0.5) - 1e-3);
+  EXPECT_LE(q["mean_displacement"].get<double>(), 1.1 * f["mean_displacement"].get<double>() + 1e-3);
+}
+
 TEST(LayoutImprovement, FastAndMipRequestsScheduleNothing) {
   LiveServer live;
   import_freiburg(live);

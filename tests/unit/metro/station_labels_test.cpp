@@ -176,6 +176,44 @@ TEST(StationLabels, ACrowdedHubIsNamedOnALeaderClearOfItsLines) {
   }
 }
 
+TEST(StationLabels, ANameLeftOutSaysWhereItWantsRoom) {
+  // Three parallel lines 2 units apart with mean edges of 10: at 75 px the middle line has
+  // other lines 15 px above and below its stations, so its names (but at its ends) are left
+  // out, and each says which place it would take given room: one beside its own line, which
+  // no line of its own crosses (the other lines do: the layout is to move them).
+  Line l = line_of(6);
+  const std::size_t n = l.g.pos.size();
+  for (int row : {1, 2}) {
+    const std::size_t first = l.g.pos.size();
+    for (std::size_t i = 0; i < n; ++i) {
+      const XY p{10.0 * static_cast<double>(i), 2.0 * row};
+      l.g.pos.push_back(p);
+      l.L.pos.push_back(p);
+      l.in.names.push_back("Station " + std::to_string(row) + "-" + std::to_string(i));
+      l.in.priority.push_back(0);
+      if (i > 0) {
+        const auto a = static_cast<std::uint32_t>(first + i - 1), b = static_cast<std::uint32_t>(first + i);
+        l.g.edges.push_back({a, b});
+        l.g.edge_lines.push_back({static_cast<std::uint32_t>(row)});
+        l.g.min_length.push_back(10);
+        l.L.paths.push_back({l.L.pos[a], p});
+        l.in.lines.push_back(1);
+      }
+    }
+  }
+  const auto scales = place_station_labels(l.g, l.L, l.in, {30, 75});
+  EXPECT_TRUE(scales[0].wanted.empty());  // below the ring's zoom nothing is asked for
+  const auto& s = scales[1];
+  ASSERT_GT(s.unlabelled, 0u);
+  EXPECT_EQ(s.wanted.size(), s.unlabelled);
+  for (const auto& w : s.wanted) {
+    EXPECT_TRUE(std::none_of(s.labels.begin(), s.labels.end(), [&](const PlacedLabel& p) { return p.node == w.node; }));
+    const Box box = layout_box(l.L, s, w);
+    const double y = l.L.pos[w.node].y;
+    EXPECT_TRUE(box.y0 >= y || box.y1 <= y) << l.in.names[w.node];  // beside its line, not across it
+  }
+}
+
 TEST(StationLabels, NoLeaderWhereTheNameFitsBesideItsSymbol) {
   auto l = line_of(5);
   for (const auto& s : place_station_labels(l.g, l.L, l.in, {60, 200})) {

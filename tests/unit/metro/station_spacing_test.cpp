@@ -171,5 +171,34 @@ TEST(StationSpacing, StopsAtTheRequestsDeadline) {
   for (std::size_t v = 0; v < copy.pos.size(); ++v) EXPECT_EQ(n.layout.pos[v].y, copy.pos[v].y);
 }
 
+TEST(LabelRoom, MovesALineOutOfANamesBox) {
+  // Two parallel lines 2 units apart, mean edge 10: at 75 px a name wanted above the middle
+  // station of the lower line (5 to 20 px above it) has the upper line (15 px above) across it.
+  // One round of the program moves the upper line clear of the box, every direction kept.
+  LayoutGraph g;
+  g.pos = {{0, 0}, {1000, 0}, {2000, 0}, {0, 200}, {1000, 200}, {2000, 200}};
+  g.edges = {{0, 1}, {1, 2}, {3, 4}, {4, 5}};
+  g.edge_lines = {{0}, {0}, {1}, {1}};
+  g.min_length.assign(4, 10.0);
+  Layout layout;
+  layout.pos = {{0, 0}, {10, 0}, {20, 0}, {0, 2}, {10, 2}, {20, 2}};
+  layout.paths = {{{0, 0}, {10, 0}}, {{10, 0}, {20, 0}}, {{0, 2}, {10, 2}}, {{10, 2}, {20, 2}}};
+  const std::vector<LabelRoom> rooms = {{1, -20, -20, 20, -5}};  // px from the station, y down
+  LabelRoomParams params;
+  params.scale_px = 75;
+  const auto dirs = directions(layout);
+  const auto room = make_room_for_labels(g, layout, rooms, {}, params);
+  ASSERT_TRUE(room.has_value());
+  EXPECT_EQ(directions(*room), dirs);
+  const double mean = measure_layout(g, *room).mean_edge;
+  const double px = 75 / mean;  // px per unit at the zoom the box is for
+  // The upper line clears the box's top (20 px) by half its width and the clearance (3 px).
+  const double above = (room->pos[4].y - room->pos[1].y) * px;
+  EXPECT_GE(above, 20 + 3 - 0.1) << above;
+  EXPECT_NEAR(room->pos[3].y, room->pos[5].y, 1e-6);  // still a straight line
+  // Nothing asked: nothing to do.
+  EXPECT_FALSE(make_room_for_labels(g, layout, {}, {}, params).has_value());
+}
+
 }  // namespace
 }  // namespace tourmap::metro

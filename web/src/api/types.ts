@@ -136,8 +136,9 @@ export interface LastImport {
 }
 
 /**
- * A background MIP improved a default (solver=auto) layout and replaced it in the server's
- * cache: the same request now gets the improved one.
+ * A background improvement (a MIP polish with fewer bends, or room made for station names)
+ * won for a default (solver=auto) layout and replaced it in the server's cache: the same
+ * request now gets the improved one.
  */
 export interface LayoutImprovedEvent {
   type: 'layout_improved';
@@ -148,7 +149,7 @@ export interface LayoutImprovedEvent {
   key: string;
   /** The layout's `params`, with solver "auto". */
   params: Record<string, string | number>;
-  solver: { kind: string; status: string; gap: number | null };
+  solver: { kind: string; status: string; gap: number | null; label_room?: LabelRoom };
   quality: LayoutQuality;
 }
 
@@ -329,11 +330,25 @@ export interface LayoutSolver {
   status: string;
   gap: number | null;
   /**
-   * scheduled: a background MIP runs for this layout (a layout_improved event follows if it
-   * wins); none: nothing follows; applied: this is the improved layout.
+   * scheduled: a background improvement (MIP, room for names) runs for this layout (a
+   * layout_improved event follows if it wins); none: nothing follows; applied: this is the
+   * improved layout.
    */
   improvement?: 'scheduled' | 'none' | 'applied';
   mip?: { accepted?: boolean; status?: string; reason?: string; time_ms?: number; gap?: number | null };
+  /** Room the background improvement made for names left out at 75 px (metro/city_layout.hpp). */
+  label_room?: LabelRoom;
+}
+
+export interface LabelRoom {
+  status: 'not_needed' | 'kept' | 'no_gain' | 'no_time';
+  /** Stations that asked for room in the first round. */
+  rooms: number;
+  /** Stations without a name at the first zoom with symbols 12 px across, before and after. */
+  unnamed_before: number;
+  unnamed_after: number;
+  rounds: number;
+  kept: number;
 }
 
 /**

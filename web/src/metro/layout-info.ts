@@ -64,12 +64,17 @@ export class LayoutInfo {
     this.stopTimer();
     const { quality, solver, timing_ms: timing, params } = answer.layout;
     const mip = solver.mip;
+    const room = solver.label_room;
+    const applied = [
+      solver.kind === 'mip' ? 'polished by the MIP' : '',
+      room && room.kept > 0 ? `room made for ${room.unnamed_before - room.unnamed_after} more station names` : '',
+    ].filter(Boolean);
     const mipText = [
       mip ? `MIP ${mip.accepted ? 'accepted' : 'not used'}${mip.status ? ` (${mip.status}${mip.accepted || !mip.reason ? '' : `: ${mip.reason}`})` : ''}` : '',
       solver.improvement === 'scheduled'
-        ? 'The MIP polishes this layout in the background: the map changes to it if it is better.'
+        ? 'The server improves this layout in the background (fewer bends, room for names): the map changes to it if it is better'
         : '',
-      solver.improvement === 'applied' ? 'Polished by the MIP in the background.' : '',
+      solver.improvement === 'applied' && applied.length > 0 ? `Improved in the background: ${applied.join(', ')}` : '',
     ]
       .filter(Boolean)
       .join('. ');

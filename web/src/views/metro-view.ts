@@ -440,7 +440,7 @@ export class MetroView implements View {
   }
 
   /**
-   * The server improved a default layout in the background (a MIP polish that won). If it is
+   * The server improved a default layout in the background (fewer bends, room for names). If it is
    * one this view asked for (same city version and parameters), the cached answer is dropped;
    * if it is the one drawn, the improved one is fetched and morphed in like any layout change:
    * no reload, and the view stays where the user put it (a fitted map stays fitted).
