@@ -269,7 +269,7 @@ void print_labels(const std::vector<std::string>& rows) {
   std::printf("\n## Station names\n\nThe placement's time for all zooms; stations named in a 1200 x 720 px view of the "
               "whole network and at twice that zoom; overlaps of names with names (at every zoom a placement is "
               "shown at, up to the next one's) or with a line's centre, over all zooms (must be 0); and stations "
-              "named at each zoom (the mean edge on screen, px; symbols 12 px across from 60 px on). Room: the layout "
+              "named at each zoom (the mean edge on screen, px; symbols 12 px across from 75 px on). Room: the layout "
               "making room for the names left out at 75 px (rounds kept / run, unnamed there before -> after, its "
               "time).\n\n| network | request | time ms | in view | 2x | overlaps |");
   for (double e : metro::kLabelMeanEdgesPx) std::printf(" %.0f px |", e);

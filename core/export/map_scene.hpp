@@ -58,7 +58,7 @@ struct SceneLabelScale {
 // The labels' style as the layout answer gives it (metro::LabelStyle's values by default).
 struct SceneLabelStyle {
   double font_px = 12, line_px = 13;
-  double symbol_share = 0.1, symbol_min_px = 3, symbol_max_px = 8;
+  double symbol_share = 0.08, symbol_min_px = 3, symbol_max_px = 8;
   double line_spacing_px = 4;
 };
 

@@ -90,7 +90,7 @@ struct CityLayoutResult {
 };
 
 // The zooms station names are placed for: the mean edge on screen, px. Symbols reach 12 px
-// across (LabelStyle: a tenth of the mean edge in radius) from a mean edge of 60 px on.
+// across (LabelStyle: 0.08 of the mean edge in radius) from a mean edge of 75 px on.
 inline const std::vector<double> kLabelMeanEdgesPx = {15, 22, 33, 50, 75, 112, 168};
 
 // Throws std::invalid_argument when params.rank is `data` and no POI has a rank. `pois` are

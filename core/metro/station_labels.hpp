@@ -47,10 +47,12 @@ struct LabelStyle {
   double leader_step_px = 8;     // a name on a leader sits 1, 2 or 3 steps beyond its nearer places
   // Names go round the ring and onto leaders only from this zoom on (symbols 12 px across):
   // in an overview, a name that does not fit beside its symbol is better left out.
-  double ring_min_mean_edge_px = 60;
+  double ring_min_mean_edge_px = 75;
   // A station symbol's radius grows with the zoom: this share of the mean edge on screen, within
   // [min, max] px. A symbol on a bundle of n lines reaches (n - 1) / 2 line spacings further.
-  double symbol_share = 0.1, symbol_min_px = 3, symbol_max_px = 8;
+  // 12 px across at 75 px, the first zoom names are placed for with the ring (with a tenth,
+  // symbols were 12 px from 60 px on, where the 50 px placement without the ring is shown).
+  double symbol_share = 0.08, symbol_min_px = 3, symbol_max_px = 8;
   double symbol_px(double mean_edge_px) const;
 };
 

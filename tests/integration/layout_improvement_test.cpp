@@ -142,7 +142,7 @@ TEST(LayoutImprovement, DefaultLayoutIsFastThenImprovedAndAnnounced) {
 // stations left unnamed there.
 std::pair<std::size_t, std::size_t> named_at_ring_zoom(const nlohmann::json& layout) {
   for (const auto& scale : layout["labels"]["scales"])
-    if (scale["mean_edge_px"].get<double>() >= 60)
+    if (scale["mean_edge_px"].get<double>() >= 75)
       return {scale["labels"].size(), scale["unlabelled"].get<std::size_t>()};
   return {0, 0};
 }

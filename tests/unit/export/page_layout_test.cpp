@@ -137,7 +137,7 @@ TEST(ExportPage, WrapsTextAtSpaces) {
 TEST(ExportPage, SymbolsFollowTheClientsRule) {
   const auto scene = small_scene();  // mean edge 100 units
   EXPECT_DOUBLE_EQ(symbol_radius_px(scene, 0.1), 3);    // 1 px: the minimum
-  EXPECT_DOUBLE_EQ(symbol_radius_px(scene, 0.5), 5);    // a tenth of 50 px
+  EXPECT_DOUBLE_EQ(symbol_radius_px(scene, 0.5), 4);    // 0.08 of 50 px
   EXPECT_DOUBLE_EQ(symbol_radius_px(scene, 10), 8);     // the maximum
 }
 

@@ -245,7 +245,7 @@ TEST(StationLabels, WidthsComeFromTheFont) {
 TEST(StationLabels, SymbolsGrowWithTheZoomWithinBounds) {
   LabelStyle style;
   EXPECT_DOUBLE_EQ(style.symbol_px(10), style.symbol_min_px);
-  EXPECT_DOUBLE_EQ(style.symbol_px(60), 6);
+  EXPECT_DOUBLE_EQ(style.symbol_px(75), 6);  // 12 px across where names go round the ring
   EXPECT_DOUBLE_EQ(style.symbol_px(1000), style.symbol_max_px);
 }
 
