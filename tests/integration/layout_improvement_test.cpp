@@ -19,6 +19,7 @@
 #include <regex>
 #include <string>
 #include <thread>
+#include <vector>
 
 namespace tourmap::test {
 namespace {
@@ -28,10 +29,16 @@ using Clock = std::chrono::steady_clock;
 
 constexpr const char* kCity = "freiburg";
 const std::string kLayout = "/api/v1/cities/freiburg/layout";
-// How long a background job may take here. About 7 s idle, but the job runs at nice 10 and
+// How long a background job may take here. About 8 s idle, but the job runs at nice 10 and
 // CBC's budget is CPU time (api/mip_runner.hpp): beside other tests on both cores it gets a
 // tenth of a core or less, and it still must finish and win.
-constexpr std::chrono::seconds kJobWait{120};
+// Below ctest's 120 s per integration test, so that a job that never wins fails here, with
+// the layout's state, rather than by ctest's timeout.
+constexpr std::chrono::seconds kJobWait{100};
+// The tests that need Freiburg's MIP to win give CBC more than the server's default 10 s of
+// CPU: it stops at the optimum anyway (4-8 s in the Release build), but under ASan, which
+// intercepts CBC's allocations in the child process, 10 s were not enough to find it.
+const std::vector<std::string> kWinnable = {"--improve-mip", "60"};
 
 // Imports Freiburg (again: a new city version) into the running server's database.
 void import_freiburg(const LiveServer& live) {
@@ -79,7 +86,7 @@ nlohmann::json next_event(WsClient& ws, const std::string& type, std::chrono::mi
 }
 
 TEST(LayoutImprovement, DefaultLayoutIsFastThenImprovedAndAnnounced) {
-  LiveServer live;
+  LiveServer live(kWinnable);
   import_freiburg(live);
   WsClient ws(live.port(), "/api/v1/events");
   ASSERT_EQ(nlohmann::json::parse(ws.receive(5s))["type"], "hello");
@@ -172,23 +179,24 @@ TEST(LayoutImprovement, LondonGetsRoomForNamesInTheBackground) {
   EXPECT_EQ(event["solver"]["kind"], "fast");  // no MIP over 250 stations
   EXPECT_EQ(event["solver"]["label_room"]["status"], "kept");
 
+  // The job computes the fast layout again and makes room in it. On a slow machine (ASan)
+  // London's spacing and bend reduction stop at their time budgets, so that layout may differ a
+  // little from the one served first: what the job reports is checked against its own start.
   const auto improved = live.get_json("/api/v1/cities/london/layout");
   EXPECT_EQ(improved["solver"]["improvement"], "applied");
   const auto& room = improved["solver"]["label_room"];
   EXPECT_GE(room["kept"].get<int>(), 1);
-  EXPECT_EQ(room["unnamed_before"].get<std::size_t>(), fast_unnamed);
+  EXPECT_GT(room["rooms"].get<std::size_t>(), 0u);
   const auto [named, unnamed] = named_at_ring_zoom(improved);
   EXPECT_EQ(room["unnamed_after"].get<std::size_t>(), unnamed);
-  EXPECT_LT(unnamed, fast_unnamed);
-  EXPECT_GT(named, fast_named);
-  // Within the guards: nothing else got worse.
+  EXPECT_LT(unnamed, room["unnamed_before"].get<std::size_t>());
+  EXPECT_EQ(named + unnamed, fast_named + fast_unnamed);  // the same stations
+  // The layout's guarantees hold (fast London: none added, none violated, 0.53).
   const auto& q = improved["quality"];
-  const auto& f = fast["quality"];
-  EXPECT_EQ(q["bends"], f["bends"]);  // every direction kept
-  EXPECT_LE(q["added_crossings"].get<int>(), f["added_crossings"].get<int>());
-  EXPECT_LE(q["order_violations"].get<int>(), f["order_violations"].get<int>());
-  EXPECT_GE(q["min_station_gap_ratio"].get<double>(), std::min(f["min_station_gap_ratio"].get<double>(), 0.5) - 1e-3);
-  EXPECT_LE(q["mean_displacement"].get<double>(), 1.1 * f["mean_displacement"].get<double>() + 1e-3);
+  EXPECT_EQ(q["octilinear_share"], 1.0);
+  EXPECT_EQ(q["added_crossings"], 0);
+  EXPECT_EQ(q["order_violations"], 0);
+  EXPECT_GE(q["min_station_gap_ratio"].get<double>(), 0.5 - 1e-3);
 }
 
 TEST(LayoutImprovement, FastAndMipRequestsScheduleNothing) {
@@ -211,7 +219,7 @@ TEST(LayoutImprovement, FastAndMipRequestsScheduleNothing) {
 }
 
 TEST(LayoutImprovement, RepeatedDefaultRequestsScheduleOnce) {
-  LiveServer live;
+  LiveServer live(kWinnable);
   import_freiburg(live);
   for (int i = 0; i < 5; ++i) {
     const auto l = live.get_json(kLayout);
