@@ -30,8 +30,8 @@ enum class LayoutSolver { automatic, fast, mip };  // the order is in stored lay
 inline constexpr std::size_t kAutoMipStations = 250;
 
 // CPU time for making room for names when asked (CityLayoutParams::label_room_ms; London:
-// 1-3 s in up to 6 rounds of 3 tries, 200-300 ms each; the budget is a backstop).
-inline constexpr double kLabelRoomCpuMs = 5000;
+// 2-4 s in up to 12 rounds of 3 tries, 200-300 ms each; the budget is a backstop).
+inline constexpr double kLabelRoomCpuMs = 10000;
 
 struct CityLayoutParams {
   bool worth_lengths = true;  // visual-worth lengths (eq. 5.4), else uniform l_const (the paper's DF4)

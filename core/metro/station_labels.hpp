@@ -44,7 +44,7 @@ struct LabelStyle {
   double line_width_px = 3.5;
   double clearance_px = 1;       // kept free around lines and symbols
   double label_gap_px = 2;       // between two names (touching, "Cyprus" and "Gallions Reach" read as one)
-  double leader_step_px = 8;     // a name on a leader sits 1, 2 or 3 steps beyond its nearer places
+  double leader_step_px = 8;     // a name on a leader sits 1 to 7 steps beyond its nearer places
   // Names go round the ring and onto leaders only from this zoom on (symbols 12 px across):
   // in an overview, a name that does not fit beside its symbol is better left out.
   double ring_min_mean_edge_px = 75;
@@ -67,6 +67,7 @@ struct PlacedLabel {
   std::size_t split = 0;        // two lines: the byte where the second begins (0: one line)
   bool leader = false;          // joined to the symbol by a leader from (lx0, ly0) to (lx1, ly1)
   double lx0 = 0, ly0 = 0, lx1 = 0, ly1 = 0;
+  int candidate = -1;           // which of the placer's places it is (for a later placement to keep)
 };
 
 struct LabelScale {
@@ -90,8 +91,13 @@ struct StationLabelInput {
 };
 
 // Placements for each scale in `mean_edges_px` (the mean edge on screen), smallest first.
+// `before`: an earlier placement on the same scales (of a layout since moved a little, as room
+// for names is made): each station first tries the place it had there, or for one left out
+// the place it wanted, where that is still free; the rest are placed as usual. Without it a
+// round that made room for a few names re-placed them all, and as many were lost as gained.
 std::vector<LabelScale> place_station_labels(const LayoutGraph& g, const Layout& layout, const StationLabelInput& in,
-                                             const std::vector<double>& mean_edges_px, const LabelStyle& style = {});
+                                             const std::vector<double>& mean_edges_px, const LabelStyle& style = {},
+                                             const std::vector<LabelScale>* before = nullptr);
 
 // The width of a name in the labels' font at `style.font_px`.
 double label_width_px(const std::string& name, const LabelStyle& style);

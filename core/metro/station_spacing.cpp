@@ -448,23 +448,27 @@ void add_room_rows(MipModel& m, const LayoutGraph& g, const Drawing& d, const Pr
                    const std::vector<LabelRoom>& rooms, const std::vector<LabelRoom>& placed, const LabelRoomParams& rp) {
   const double k = mean / rp.scale_px;  // layout units per px now
   const double reach = rp.radius * mean;
-  for (const auto& room : rooms) {
-    const auto v = room.station;
-    if (v >= d.stations) continue;
+  // Rows keeping the box of v's label (px from v, y down) clear of the lines and symbols near
+  // it: all of them for a room, only those it is clear of now for a placed name (a name kept
+  // must not lose its place to the room made for another; one that meets a line now was
+  // placed on a side the placement will not take again anyway).
+  const auto keep_clear = [&](const LabelRoom& label, bool only_clear_now) {
+    const auto v = label.station;
     const XY at = d.pt[v];
-    const std::array<XY, 4> corner = {XY{room.x0, -room.y0}, XY{room.x1, -room.y0}, XY{room.x0, -room.y1},
-                                      XY{room.x1, -room.y1}};
+    const std::array<XY, 4> corner = {XY{label.x0, -label.y0}, XY{label.x1, -label.y0}, XY{label.x0, -label.y1},
+                                      XY{label.x1, -label.y1}};
     std::vector<XY> box;
     for (XY c : corner) box.push_back({at.x + c.x * k, at.y + c.y * k});
-    const double bx0 = at.x + room.x0 * k - reach, bx1 = at.x + room.x1 * k + reach;
-    const double by0 = at.y - room.y1 * k - reach, by1 = at.y - room.y0 * k + reach;
+    const double bx0 = at.x + label.x0 * k - reach, bx1 = at.x + label.x1 * k + reach;
+    const double by0 = at.y - label.y1 * k - reach, by1 = at.y - label.y0 * k + reach;
     const auto near = [&](XY a, XY b) {
       return std::max(a.x, b.x) >= bx0 && std::min(a.x, b.x) <= bx1 && std::max(a.y, b.y) >= by0 && std::min(a.y, b.y) <= by1;
     };
     const auto add = [&](std::initializer_list<std::uint32_t> ids, double need_px) {
       std::vector<XY> pts;
       for (auto id : ids) pts.push_back(d.pt[id]);
-      const int w = best_separation(pts, box).first;
+      const auto [w, apart] = best_separation(pts, box);
+      if (only_clear_now && apart < need_px * k) return;
       std::uint32_t q = *ids.begin();
       for (auto id : ids)
         if (dot(kDir[w], d.pt[id]) < dot(kDir[w], d.pt[q])) q = id;
@@ -488,6 +492,31 @@ void add_room_rows(MipModel& m, const LayoutGraph& g, const Drawing& d, const Pr
     }
     for (std::uint32_t u = 0; u < d.stations; ++u)
       if (u != v && near(d.pt[u], d.pt[u])) add({u}, rp.symbol_px + rp.clearance_px);
+  };
+  // The placed names whose stations may move (within move_radius of a room's station).
+  const double moving = rp.move_radius * mean;
+  for (const auto& label : placed) {
+    if (label.station >= d.stations) continue;
+    for (const auto& room : rooms)
+      if (room.station < d.stations && dist(d.pt[label.station], d.pt[room.station]) <= moving) {
+        keep_clear(label, true);
+        break;
+      }
+  }
+  for (const auto& room : rooms) {
+    const auto v = room.station;
+    if (v >= d.stations) continue;
+    keep_clear(room, false);
+    const XY at = d.pt[v];
+    const std::array<XY, 4> corner = {XY{room.x0, -room.y0}, XY{room.x1, -room.y0}, XY{room.x0, -room.y1},
+                                      XY{room.x1, -room.y1}};
+    std::vector<XY> box;
+    for (XY c : corner) box.push_back({at.x + c.x * k, at.y + c.y * k});
+    const double bx0 = at.x + room.x0 * k - reach, bx1 = at.x + room.x1 * k + reach;
+    const double by0 = at.y - room.y1 * k - reach, by1 = at.y - room.y0 * k + reach;
+    const auto near = [&](XY a, XY b) {
+      return std::max(a.x, b.x) >= bx0 && std::min(a.x, b.x) <= bx1 && std::max(a.y, b.y) >= by0 && std::min(a.y, b.y) <= by1;
+    };
     // Other names (placed ones, and the rooms after this one): both boxes move with their
     // stations, so w.(u - v) - M (max w.o_v - min w.o_u + gap) / S >= 0.
     const auto corners = [](const LabelRoom& r) {

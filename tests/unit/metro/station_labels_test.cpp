@@ -214,6 +214,26 @@ TEST(StationLabels, ANameLeftOutSaysWhereItWantsRoom) {
   }
 }
 
+TEST(StationLabels, AnEarlierPlacementsPlacesAreKeptWhereFree) {
+  // Crowded: the order stations are named in decides who gets a place. Named last to first,
+  // then first to last (the usual priority) but keeping the earlier places: the same labels.
+  auto l = line_of(8, "Longer station name ");
+  const std::vector<double> scales = {60};
+  for (std::size_t v = 0; v < l.in.priority.size(); ++v) l.in.priority[v] = static_cast<double>(v);
+  const auto reversed = place_station_labels(l.g, l.L, l.in, scales);
+  for (std::size_t v = 0; v < l.in.priority.size(); ++v) l.in.priority[v] = -static_cast<double>(v);
+  const auto fresh = place_station_labels(l.g, l.L, l.in, scales);
+  const auto kept = place_station_labels(l.g, l.L, l.in, scales, LabelStyle{}, &reversed);
+  const auto places = [](const LabelScale& s) {
+    std::vector<std::pair<std::uint32_t, int>> out;
+    for (const auto& label : s.labels) out.push_back({label.node, label.candidate});
+    std::sort(out.begin(), out.end());
+    return out;
+  };
+  ASSERT_NE(places(fresh[0]), places(reversed[0]));  // else the test shows nothing
+  EXPECT_EQ(places(kept[0]), places(reversed[0]));
+}
+
 TEST(StationLabels, NoLeaderWhereTheNameFitsBesideItsSymbol) {
   auto l = line_of(5);
   for (const auto& s : place_station_labels(l.g, l.L, l.in, {60, 200})) {

@@ -200,5 +200,32 @@ TEST(LabelRoom, MovesALineOutOfANamesBox) {
   EXPECT_FALSE(make_room_for_labels(g, layout, {}, {}, params).has_value());
 }
 
+TEST(LabelRoom, KeepsPlacedNamesClearOfTheLinesItMoves) {
+  // The lines of the test above, and a third one 4 units (30 px) below the middle one, whose
+  // middle station has its name placed above it (5 to 20 px up): room for the middle station's
+  // name can be made by moving the upper line up or the middle one down (into that name); the
+  // placed name must stay clear either way. (Here the program moves the upper line even
+  // without the placed name's rows; London's rounds are where they count: metro_bench.)
+  LayoutGraph g;
+  g.pos = {{0, 0}, {1000, 0}, {2000, 0}, {0, 200}, {1000, 200}, {2000, 200}, {0, -400}, {1000, -400}, {2000, -400}};
+  g.edges = {{0, 1}, {1, 2}, {3, 4}, {4, 5}, {6, 7}, {7, 8}};
+  g.edge_lines = {{0}, {0}, {1}, {1}, {2}, {2}};
+  g.min_length.assign(6, 10.0);
+  Layout layout;
+  layout.pos = {{0, 0}, {10, 0}, {20, 0}, {0, 2}, {10, 2}, {20, 2}, {0, -4}, {10, -4}, {20, -4}};
+  for (auto [a, b] : g.edges) layout.paths.push_back({layout.pos[a], layout.pos[b]});
+  const std::vector<LabelRoom> rooms = {{1, -20, -20, 20, -5}};
+  const std::vector<LabelRoom> placed = {{7, -20, -20, 20, -5}};
+  LabelRoomParams params;
+  params.scale_px = 75;
+  const auto room = make_room_for_labels(g, layout, rooms, placed, params);
+  ASSERT_TRUE(room.has_value());
+  const double px = 75 / measure_layout(g, *room).mean_edge;
+  // The room is made (the upper line clears its top by 3 px) and the placed name's top (20 px
+  // above station 7) stays clear of the middle line by its half width and clearance.
+  EXPECT_GE((room->pos[4].y - room->pos[1].y) * px, 20 + 3 - 0.1);
+  EXPECT_GE((room->pos[1].y - room->pos[7].y) * px, 20 + 3 - 0.1);
+}
+
 }  // namespace
 }  // namespace tourmap::metro
