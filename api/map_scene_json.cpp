@@ -31,7 +31,7 @@ void read_labels(const nlohmann::json& labels, std::size_t stations, MapScene& s
     map_export::SceneLabelScale scale;
     scale.px_per_unit = s.at("px_per_m").get<double>();
     for (const auto& l : s.at("labels")) {
-      // [station index, x0, y0, x1, y1, text x, text y, anchor, split(, leader x0, y0, x1, y1)]:
+      // [station index, x0, y0, x1, y1, text x, text y, anchor, split, size(, leader x0, y0, x1, y1)]:
       // stations are the scene's first nodes, in the answer's order.
       map_export::SceneLabel label;
       label.node = l.at(0).get<std::uint32_t>();
@@ -44,10 +44,11 @@ void read_labels(const nlohmann::json& labels, std::size_t stations, MapScene& s
       const auto anchor = l.at(7).get<std::string>();
       label.anchor = anchor.empty() ? 's' : anchor[0];
       label.split = l.at(8).get<std::size_t>();
-      if (l.size() >= 13) {
+      label.font_px = l.at(9).get<double>();
+      if (l.size() >= 14) {
         label.leader = true;
-        label.lx0 = l.at(9).get<double>(), label.ly0 = l.at(10).get<double>();
-        label.lx1 = l.at(11).get<double>(), label.ly1 = l.at(12).get<double>();
+        label.lx0 = l.at(10).get<double>(), label.ly0 = l.at(11).get<double>();
+        label.lx1 = l.at(12).get<double>(), label.ly1 = l.at(13).get<double>();
       }
       if (label.node < stations) scale.labels.push_back(label);
     }

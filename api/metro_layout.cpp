@@ -13,7 +13,7 @@
 namespace tourmap::api {
 namespace {
 
-constexpr int kLayoutVersion = 13;  // 6: bend reduction, quality.compare (the metric tool's figures); 7: clearance in the bend reduction; 8: detour limit in the router, spacing with cuts, mm coordinates, line order; 9: names on leaders; 10: bends by rounds, names apart between zooms; 11: MIP improvements only as better maps; 12: room for names, symbols 12 px at 75 px; 13: longer leaders, names kept between room rounds
+constexpr int kLayoutVersion = 14;  // 6: bend reduction, quality.compare (the metric tool's figures); 7: clearance in the bend reduction; 8: detour limit in the router, spacing with cuts, mm coordinates, line order; 9: names on leaders; 10: bends by rounds, names apart between zooms; 11: MIP improvements only as better maps; 12: room for names, symbols 12 px at 75 px; 13: longer leaders, names kept between room rounds; 14: smaller type as the last resort
 using util::Clock;
 using util::ms_since;
 
@@ -108,9 +108,10 @@ double round_px(double v) { return std::round(v * 10) / 10; }
 
 // Station names per zoom (metro/station_labels.hpp). Each label is [station index (into the
 // stations' features), x0, y0, x1, y1 (its box), text x, text y (the first line's baseline),
-// anchor ("s", "m", "e"), split (byte where the second line begins, 0: one line)], in px from
-// the station's point, x right and y down; a name set off on a leader has four more numbers:
-// the leader from (x, y) at the symbol's rim to (x, y) at the box.
+// anchor ("s", "m", "e"), split (byte where the second line begins, 0: one line), size (the
+// type's px: font.size_px, or font.small_px for a name that fits in no other way)], in px
+// from the station's point, x right and y down; a name set off on a leader has four more
+// numbers: the leader from (x, y) at the symbol's rim to (x, y) at the box.
 nlohmann::json labels_json(const metro::CityLayoutResult& L, const std::vector<int>& station_index, double metres_per_unit) {
   const metro::LabelStyle style;
   double mean_unit = 0;
@@ -123,7 +124,8 @@ nlohmann::json labels_json(const metro::CityLayoutResult& L, const std::vector<i
     for (const auto& l : scale.labels) {
       if (station_index[l.node] < 0) continue;
       nlohmann::json label = {station_index[l.node], round_px(l.x0), round_px(l.y0), round_px(l.x1), round_px(l.y1),
-                              round_px(l.text_x), round_px(l.text_y), std::string(1, l.anchor), l.split};
+                              round_px(l.text_x), round_px(l.text_y), std::string(1, l.anchor), l.split,
+                              l.font_px > 0 ? l.font_px : style.font_px};
       if (l.leader)
         for (double v : {l.lx0, l.ly0, l.lx1, l.ly1}) label.push_back(round_px(v));
       labels.push_back(std::move(label));
@@ -133,9 +135,12 @@ nlohmann::json labels_json(const metro::CityLayoutResult& L, const std::vector<i
                       {"symbol_px", scale.symbol_px},
                       {"unlabelled", scale.unlabelled},
                       {"leaders", scale.leaders},
+                      {"small", scale.small},
                       {"labels", std::move(labels)}});
   }
-  return {{"font", {{"family", metro::kLabelFontFamily}, {"weight", "bold"}, {"size_px", style.font_px}, {"line_px", style.line_px}}},
+  return {{"font",
+           {{"family", metro::kLabelFontFamily}, {"weight", "bold"}, {"size_px", style.font_px}, {"line_px", style.line_px},
+            {"small_px", style.small_font_px}}},
           {"symbol", {{"share", style.symbol_share}, {"min_px", style.symbol_min_px}, {"max_px", style.symbol_max_px}}},
           {"line_spacing_px", style.line_spacing_px},
           {"mean_edge_m", mean_unit * metres_per_unit},

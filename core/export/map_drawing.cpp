@@ -126,8 +126,9 @@ void draw_labels(const MapScene& scene, const PageLayout& page, const MapStyle& 
     t.at = {at.x + l.text_x, at.y + l.text_y};
     t.lines = label_lines(scene.nodes[l.node].name, l.split);
     for (const auto& line : t.lines) t.fit_em.push_back(metro::label_text_em(line));
-    t.size_px = st.font_px;
-    t.line_px = st.line_px;
+    // A name in the smaller type has its line spacing scaled alike (metro::LabelStyle).
+    t.size_px = l.font_px > 0 ? l.font_px : st.font_px;
+    t.line_px = st.line_px * t.size_px / st.font_px;
     t.bold = true;
     t.anchor = l.anchor;
     t.fill = style.ink;

@@ -45,6 +45,7 @@ struct SceneLabel {
   double text_x = 0, text_y = 0;          // the anchor on the first line's baseline
   char anchor = 's';                      // 's' start, 'm' middle, 'e' end
   std::size_t split = 0;                  // byte where a second line begins (0: one line)
+  double font_px = 0;                     // its type size (0: the style's)
   bool leader = false;                    // set off on a leader from (lx0, ly0) to (lx1, ly1)
   double lx0 = 0, ly0 = 0, lx1 = 0, ly1 = 0;
 };

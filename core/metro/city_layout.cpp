@@ -68,11 +68,10 @@ void make_room_for_names(const LayoutGraph& g, Layout& layout, const StationLabe
   report.status = "no_gain";
   while (report.rounds < kMaxRounds && !out.labels[first].wanted.empty()) {
     const auto& scale = out.labels[first];
-    std::vector<LabelRoom> rooms;
-    for (const auto& l : scale.wanted) rooms.push_back({l.node, l.x0, l.y0, l.x1, l.y1});
     std::vector<LabelRoom> placed;
     for (const auto& l : scale.labels) placed.push_back({l.node, l.x0, l.y0, l.x1, l.y1});
-    if (report.rounds == 0) report.rooms = rooms.size();
+    if (report.rounds == 0)
+      for (const auto& l : scale.wanted) report.rooms += l.font_px >= style.font_px;
     ++report.rounds;
     struct Try {
       Layout layout;
@@ -81,28 +80,40 @@ void make_room_for_names(const LayoutGraph& g, Layout& layout, const StationLabe
       std::size_t unnamed;
     };
     std::optional<Try> best;
-    for (const double radius : kMoveRadii) {
-      if (used_ms() >= budget_ms) {
-        report.status = "no_time";
-        break;
+    // Room for the names in the usual type, then in the smaller one (less room, and the only
+    // way for some: London's Ravenscourt Park); each with every move radius.
+    for (const bool small : {false, true}) {
+      std::vector<LabelRoom> rooms;
+      auto before = out.labels;  // the placement to keep, wanting only the places of this type
+      auto& wanted = before[first].wanted;
+      wanted.erase(std::remove_if(wanted.begin(), wanted.end(),
+                                  [&](const PlacedLabel& l) { return (l.font_px < style.font_px) != small; }),
+                   wanted.end());
+      for (const auto& l : wanted) rooms.push_back({l.node, l.x0, l.y0, l.x1, l.y1});
+      if (rooms.empty()) continue;
+      for (const double radius : kMoveRadii) {
+        if (used_ms() >= budget_ms) {
+          report.status = "no_time";
+          break;
+        }
+        LabelRoomParams room;
+        room.scale_px = scale.mean_edge_px;
+        room.symbol_px = scale.symbol_px;
+        room.line_spacing_px = style.line_spacing_px;
+        room.clearance_px = style.clearance_px;
+        room.label_gap_px = style.label_gap_px;
+        room.move_radius = radius;
+        SpacingParams spacing;
+        spacing.time_limit_ms = budget_ms - used_ms();
+        auto candidate = make_room_for_labels(g, layout, rooms, placed, room, spacing);
+        if (!candidate) continue;
+        auto quality = measure_layout(g, *candidate);
+        if (!sound(quality)) continue;
+        auto labels = place_station_labels(g, *candidate, names, kLabelMeanEdgesPx, LabelStyle{}, &before);
+        const auto unnamed = unnamed_from(labels, first);
+        if (unnamed < (best ? best->unnamed : unnamed_from(out.labels, first)))
+          best = Try{std::move(*candidate), quality, std::move(labels), unnamed};
       }
-      LabelRoomParams room;
-      room.scale_px = scale.mean_edge_px;
-      room.symbol_px = scale.symbol_px;
-      room.line_spacing_px = style.line_spacing_px;
-      room.clearance_px = style.clearance_px;
-      room.label_gap_px = style.label_gap_px;
-      room.move_radius = radius;
-      SpacingParams spacing;
-      spacing.time_limit_ms = budget_ms - used_ms();
-      auto candidate = make_room_for_labels(g, layout, rooms, placed, room, spacing);
-      if (!candidate) continue;
-      auto quality = measure_layout(g, *candidate);
-      if (!sound(quality)) continue;
-      auto labels = place_station_labels(g, *candidate, names, kLabelMeanEdgesPx, LabelStyle{}, &out.labels);
-      const auto unnamed = unnamed_from(labels, first);
-      if (unnamed < (best ? best->unnamed : unnamed_from(out.labels, first)))
-        best = Try{std::move(*candidate), quality, std::move(labels), unnamed};
     }
     if (!best) break;
     layout = std::move(best->layout);

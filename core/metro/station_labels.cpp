@@ -163,6 +163,7 @@ struct Text {
 PlacedLabel place_box(std::uint32_t node, int p, int slide, const Text& t, double rho, double lane, const LabelStyle& s) {
   const double w = t.width, h = s.height_px + (t.split ? s.line_px : 0), d = rho * std::sqrt(0.5);
   PlacedLabel l{node, p, slide, 0, 0, 0, 0, 0, 0, 's', t.split};
+  l.font_px = s.font_px;
   // Slid boxes clear the line along their side: beside it rather than centred on it.
   const double beside = lane + (slide < 0 ? h : 0);
   switch (p) {
@@ -198,6 +199,7 @@ PlacedLabel ring_box(std::uint32_t node, double angle_deg, double extra, const T
   const double sx = std::clamp(fx / kSide, -1.0, 1.0), sy = std::clamp(fy / kSide, -1.0, 1.0);
   const int side = static_cast<int>(std::lround(angle_deg / 45.0)) % 8;
   PlacedLabel l{node, side, 0, 0, 0, 0, 0, 0, 0, 's', t.split};
+  l.font_px = s.font_px;
   l.x0 = r * fx + (sx - 1) * w / 2;
   l.y0 = r * fy + (sy - 1) * h / 2;
   l.x1 = l.x0 + w;
@@ -233,7 +235,12 @@ Text text_of(const std::string& name, const LabelStyle& style, bool two_lines) {
 class Placer {
  public:
   Placer(const LayoutGraph& g, const Layout& L, const StationLabelInput& in, const LabelStyle& style)
-      : g_(g), L_(L), style_(style), neighbours_(g.pos.size()), degree_(g.pos.size(), 0) {
+      : g_(g), L_(L), style_(style), small_style_(style), neighbours_(g.pos.size()), degree_(g.pos.size(), 0) {
+    // The smaller type: the same box proportions at small_font_px.
+    const double ratio = style.small_font_px > 0 ? std::min(1.0, style.small_font_px / style.font_px) : 1.0;
+    small_style_.font_px *= ratio;
+    small_style_.height_px *= ratio;
+    small_style_.line_px *= ratio;
     double total = 0;
     for (std::uint32_t e = 0; e < g.edges.size(); ++e) {
       const auto& path = L.paths[e];
@@ -271,12 +278,16 @@ class Placer {
     for (const auto& [v, n] : bundle_) max_lines_ = std::max(max_lines_, n);
     one_line_.resize(g.pos.size(), Text{0, 0});
     two_lines_.resize(g.pos.size(), Text{0, 0});
+    small_one_line_.resize(g.pos.size(), Text{0, 0});
+    small_two_lines_.resize(g.pos.size(), Text{0, 0});
     // Interchanges and termini first, then by the caller's priority.
     for (std::uint32_t v = 0; v < g.pos.size(); ++v)
       if (v < in.names.size() && !in.names[v].empty()) {
         order_.push_back(v);
         one_line_[v] = text_of(in.names[v], style, false);
         two_lines_[v] = text_of(in.names[v], style, true);
+        small_one_line_[v] = text_of(in.names[v], small_style_, false);
+        small_two_lines_[v] = text_of(in.names[v], small_style_, true);
       }
     std::stable_sort(order_.begin(), order_.end(), [&](auto a, auto b) {
       const auto key = [&](std::uint32_t v) {
@@ -304,6 +315,7 @@ class Placer {
     label_rects_.clear();
     leaders_.clear();
     placed_.assign(g_.pos.size(), -1);
+    small_.assign(g_.pos.size(), 0);
     if (label_grid_cells_ != grid_cell_) {
       label_grid_ = Grid(bounds_, grid_cell_);
       label_grid_cells_ = grid_cell_;
@@ -312,37 +324,64 @@ class Placer {
     }
     // Each station's place in the earlier placement, or the place it wanted there.
     std::vector<int> hint(g_.pos.size(), -1);
+    std::vector<char> hint_small(g_.pos.size(), 0);
     if (before) {
       for (const auto* list : {&before->wanted, &before->labels})
         for (const auto& l : *list)
-          if (l.node < hint.size() && l.candidate >= 0 && l.candidate < kCandidates) hint[l.node] = l.candidate;
+          if (l.node < hint.size() && l.candidate >= 0 && l.candidate < kCandidates) {
+            hint[l.node] = l.candidate;
+            hint_small[l.node] = l.font_px < style_.font_px;
+          }
     }
     std::vector<std::uint32_t> left_out;
     // The request's deadline or client stops the placement (util/stop.hpp): on a dense network
     // the ring and the repair try hundreds of places per station left out.
     for (auto v : order_) {
       util::check_stop();
-      if (hint[v] >= 0 && valid(v, hint[v]) && free(v, hint[v])) put(v, hint[v]);
-      else if (!place_best(v)) left_out.push_back(v);
+      small_[v] = hint_small[v] && ring_;
+      if (hint[v] >= 0 && valid(v, hint[v]) && free(v, hint[v])) {
+        put(v, hint[v]);
+        continue;
+      }
+      small_[v] = 0;
+      if (!place_best(v)) left_out.push_back(v);
     }
     // Repair: a station left out may take a place held by labels in its way that can move.
-    std::size_t unlabelled = 0;
     for (auto v : left_out) {
       util::check_stop();
-      if (!repair(v)) {
+      repair(v);
+    }
+    // Last, from the ring's zoom on: the names still left out in smaller type (as map makers
+    // set the names of a crowded centre), in a free place or by moving labels in the way.
+    if (ring_ && small_style_.font_px < style_.font_px)
+      for (auto v : left_out) {
+        if (placed_[v] >= 0) continue;
+        util::check_stop();
+        small_[v] = 1;
+        if (!place_best(v) && !repair(v)) small_[v] = 0;
+      }
+    std::size_t unlabelled = 0;
+    for (auto v : left_out)
+      if (placed_[v] < 0) {
         ++unlabelled;
         if (!has_room(v)) ++out.no_room;
       }
-    }
     for (const auto& l : labels_)
       if (l.node != kRemoved) {
         out.labels.push_back(l);
         if (l.leader) ++out.leaders;
+        if (l.font_px < style_.font_px) ++out.small;
       }
+    // The place each one left out wants, in the usual type and in the smaller one.
     if (ring_)
       for (auto v : left_out)
-        if (placed_[v] < 0)
+        if (placed_[v] < 0) {
           if (const int c = roomiest_place(v); c >= 0) out.wanted.push_back(candidate(v, c));
+          if (small_style_.font_px >= style_.font_px) continue;
+          small_[v] = 1;
+          if (const int c = roomiest_place(v); c >= 0) out.wanted.push_back(candidate(v, c));
+          small_[v] = 0;
+        }
     out.unlabelled = unlabelled;
     return out;
   }
@@ -416,10 +455,12 @@ class Placer {
   static bool far(int c) { return !on_ring(c) && c >= 32; }
   static double ring_angle_deg(int c) { return (c - kPlaces) % kRingAngles * (360.0 / kRingAngles); }
   PlacedLabel candidate(std::uint32_t v, int c) const {
-    const Text& t = two_line(c) ? two_lines_[v] : one_line_[v];
+    const bool small = small_[v] != 0;
+    const LabelStyle& st = small ? small_style_ : style_;
+    const Text& t = two_line(c) ? (small ? small_two_lines_[v] : two_lines_[v]) : (small ? small_one_line_[v] : one_line_[v]);
     const double ring = reach_px(v) + style_.gap_px;
     if (on_ring(c)) {
-      auto l = ring_box(v, ring_angle_deg(c), ring_level(c) * style_.leader_step_px, t, ring, reach_px(v), style_);
+      auto l = ring_box(v, ring_angle_deg(c), ring_level(c) * style_.leader_step_px, t, ring, reach_px(v), st);
       l.candidate = c;
       return l;
     }
@@ -430,7 +471,7 @@ class Placer {
     const auto it = bundle_.find(v);
     const double n = it == bundle_.end() ? 1.0 : static_cast<double>(it->second);
     const double lane = n * style_.line_spacing_px / 2 + style_.clearance_px + 1;
-    auto l = place_box(v, side, slide, t, ring + (far(c) ? style_.height_px / 2 : 0), lane, style_);
+    auto l = place_box(v, side, slide, t, ring + (far(c) ? st.height_px / 2 : 0), lane, st);
     l.candidate = c;
     return l;
   }
@@ -668,12 +709,14 @@ class Placer {
   const LayoutGraph& g_;
   const Layout& L_;
   LabelStyle style_;
+  LabelStyle small_style_;  // the smaller type for names that fit nowhere else
   std::vector<Segment> segments_;
   std::vector<std::vector<std::uint32_t>> neighbours_;
   std::vector<std::size_t> degree_;
   std::unordered_map<std::uint32_t, std::size_t> bundle_;  // node -> widest bundle through it
   std::vector<std::uint32_t> order_;
   std::vector<Text> one_line_, two_lines_;  // per node: its name on one line, and on two
+  std::vector<Text> small_one_line_, small_two_lines_;  // the same in the smaller type
   std::size_t max_lines_ = 1;
   double mean_ = 1, grid_cell_ = 1;
   Rect bounds_{0, 0, 0, 0};
@@ -688,6 +731,7 @@ class Placer {
   std::vector<Rect> label_rects_;
   std::vector<Leader> leaders_;  // per label
   std::vector<int> placed_;
+  std::vector<char> small_;  // per node: its name in the smaller type at this scale
 };
 
 }  // namespace

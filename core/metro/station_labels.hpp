@@ -37,6 +37,9 @@ namespace tourmap::metro {
 
 struct LabelStyle {
   double font_px = 12;           // the name's size
+  // From the zoom names go round the ring on, a name that fits nowhere in font_px is tried in
+  // this size (height and line spacing scaled alike); 0: never.
+  double small_font_px = 10;
   double height_px = 14;         // its box's height (one line; each more adds line_px)
   double line_px = 13;           // from one line of a name's text to the next
   double gap_px = 3;             // between a symbol and its label
@@ -68,6 +71,7 @@ struct PlacedLabel {
   bool leader = false;          // joined to the symbol by a leader from (lx0, ly0) to (lx1, ly1)
   double lx0 = 0, ly0 = 0, lx1 = 0, ly1 = 0;
   int candidate = -1;           // which of the placer's places it is (for a later placement to keep)
+  double font_px = 0;           // its type size (the style's, or its small_font_px)
 };
 
 struct LabelScale {
@@ -78,9 +82,11 @@ struct LabelScale {
   std::size_t unlabelled = 0;   // named stations without a label at this scale
   std::size_t no_room = 0;      // of those, how many have no place clear of lines and symbols
   std::size_t leaders = 0;      // labels on a leader
+  std::size_t small = 0;        // labels in the smaller type
   // From the zoom where names go round the ring on: for each station left unnamed, the place
   // its name would take given room (the one the fewest lines and symbols stand in, none of
-  // them its own), for the layout to make room (metro/station_spacing.hpp, LabelRoom).
+  // them its own), for the layout to make room (metro/station_spacing.hpp, LabelRoom); once in
+  // font_px and, where the style has a smaller type, once more in that (see font_px).
   std::vector<PlacedLabel> wanted;
 };
 

@@ -90,7 +90,7 @@ TEST(MapExportScene, ReadFromTheLayoutAnswer) {
       {"geometry": {"coordinates": [[100, 0], [100, 50], [150, 100]]}, "properties": {"from": "b", "to": "j", "lines": ["u2", "u1"], "line_order": ["u1", "u2"]}}]},
     "labels": {"font": {"size_px": 12, "line_px": 13}, "symbol": {"share": 0.1, "min_px": 3, "max_px": 8},
                "line_spacing_px": 4, "mean_edge_m": 125,
-               "scales": [{"px_per_m": 0.5, "labels": [[1, 5, -7, 40, 7, 5, 4.2, "s", 0], [7, 0, 0, 1, 1, 0, 0, "s", 0]]}]},
+               "scales": [{"px_per_m": 0.5, "labels": [[1, 5, -7, 40, 7, 5, 4.2, "s", 0, 10, 1, 2, 3, 4], [7, 0, 0, 1, 1, 0, 0, "s", 0, 12]]}]},
     "attribution": ["Network: somebody"]})");
   const auto scene = scene_from_layout(body, "Testville");
   EXPECT_EQ(scene.title, "Testville");
@@ -107,6 +107,9 @@ TEST(MapExportScene, ReadFromTheLayoutAnswer) {
   ASSERT_EQ(scene.label_scales.size(), 1u);
   ASSERT_EQ(scene.label_scales[0].labels.size(), 1u);  // the one of a station index beyond them dropped
   EXPECT_EQ(scene.label_scales[0].labels[0].node, 1u);
+  EXPECT_DOUBLE_EQ(scene.label_scales[0].labels[0].font_px, 10);  // in the smaller type
+  EXPECT_TRUE(scene.label_scales[0].labels[0].leader);
+  EXPECT_DOUBLE_EQ(scene.label_scales[0].labels[0].ly1, 4);
   EXPECT_EQ(scene.attribution, (std::vector<std::string>{"Network: somebody"}));
   EXPECT_EQ(parse_line_color("00ff7f").g, 0xff);
 }

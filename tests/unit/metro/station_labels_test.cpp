@@ -105,6 +105,22 @@ Line squeezed(const std::string& name) {
   return l;
 }
 
+TEST(StationLabels, ANameThatFitsNowhereElseTakesTheSmallerType) {
+  // The squeeze below (about 116 px beside the symbol) with one long word.
+  auto l = squeezed("Mendelssohnstrasse");  // 125 px wide in 12 px, 104 px in 10 px
+  LabelStyle usual_only;
+  usual_only.small_font_px = 0;
+  const auto without = place_station_labels(l.g, l.L, l.in, {250}, usual_only);
+  EXPECT_EQ(without[0].unlabelled, 1u);
+  const auto with = place_station_labels(l.g, l.L, l.in, {250});
+  ASSERT_EQ(with[0].labels.size(), 1u);
+  EXPECT_EQ(with[0].small, 1u);
+  EXPECT_DOUBLE_EQ(with[0].labels[0].font_px, 10);
+  // Below the zoom where names go round the ring, no smaller type.
+  const auto overview = place_station_labels(l.g, l.L, l.in, {50});
+  EXPECT_EQ(overview[0].small, 0u);
+}
+
 TEST(StationLabels, LongNamesBreakOntoTwoLines) {
   // A station on a vertical line with two more vertical lines 13 units to either side: at 10 px
   // per unit its name fits between them only on two lines.
@@ -205,7 +221,14 @@ TEST(StationLabels, ANameLeftOutSaysWhereItWantsRoom) {
   EXPECT_TRUE(scales[0].wanted.empty());  // below the ring's zoom nothing is asked for
   const auto& s = scales[1];
   ASSERT_GT(s.unlabelled, 0u);
-  EXPECT_EQ(s.wanted.size(), s.unlabelled);
+  // Once in the usual type and once in the smaller one, each.
+  EXPECT_EQ(s.wanted.size(), 2 * s.unlabelled);
+  for (std::size_t i = 0; i + 1 < s.wanted.size(); i += 2) {
+    EXPECT_EQ(s.wanted[i].node, s.wanted[i + 1].node);
+    EXPECT_DOUBLE_EQ(s.wanted[i].font_px, 12);
+    EXPECT_DOUBLE_EQ(s.wanted[i + 1].font_px, 10);
+    EXPECT_LT(s.wanted[i + 1].x1 - s.wanted[i + 1].x0, s.wanted[i].x1 - s.wanted[i].x0);
+  }
   for (const auto& w : s.wanted) {
     EXPECT_TRUE(std::none_of(s.labels.begin(), s.labels.end(), [&](const PlacedLabel& p) { return p.node == w.node; }));
     const Box box = layout_box(l.L, s, w);

@@ -355,21 +355,22 @@ export interface LabelRoom {
  * Station names placed by the server for a set of zooms (metro/station_labels.hpp). A label is
  * [station index into stations.features, x0, y0, x1, y1 (its box), text x, text y (the first
  * line's baseline), anchor ('s' start, 'm' middle, 'e' end), split (byte where a second line
- * begins; 0: one line)], in px from the station's point, y down. A name set off from its symbol
+ * begins; 0: one line), size (the type's px: font.size_px, or font.small_px for a name that fits
+ * in no other way)], in px from the station's point, y down. A name set off from its symbol
  * in a crowded place has four more numbers: its leader, from (x, y) at the symbol's rim to
  * (x, y) at the name's box.
  */
 export type LayoutLabel =
-  | [number, number, number, number, number, number, number, 's' | 'm' | 'e', number]
-  | [number, number, number, number, number, number, number, 's' | 'm' | 'e', number, number, number, number, number];
+  | [number, number, number, number, number, number, number, 's' | 'm' | 'e', number, number]
+  | [number, number, number, number, number, number, number, 's' | 'm' | 'e', number, number, number, number, number, number];
 
 export interface LayoutLabels {
-  font: { family: string; weight: string; size_px: number; line_px: number };
+  font: { family: string; weight: string; size_px: number; line_px: number; small_px: number };
   /** A symbol's radius: share * the mean edge on screen, within [min_px, max_px]. */
   symbol: { share: number; min_px: number; max_px: number };
   line_spacing_px: number;
   mean_edge_m: number;
-  scales: { mean_edge_px: number; px_per_m: number; symbol_px: number; unlabelled: number; leaders: number; labels: LayoutLabel[] }[];
+  scales: { mean_edge_px: number; px_per_m: number; symbol_px: number; unlabelled: number; leaders: number; small: number; labels: LayoutLabel[] }[];
 }
 
 export interface LayoutResponse {

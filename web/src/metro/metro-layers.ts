@@ -55,9 +55,9 @@ export interface ServerLabels {
   byScale: Map<string, LayoutLabel>[];
 }
 
-/** The labels' font as the server measured it (DejaVu Sans Condensed Bold); fallbacks are scaled to its widths. */
-function serverFont(info: LayoutLabels): string {
-  return `${info.font.weight} ${info.font.size_px}px "${info.font.family}", "DejaVu Sans", "Arial Narrow", sans-serif`;
+/** The labels' font as the server measured it (DejaVu Sans Condensed Bold), at `sizePx` (its usual size or the smaller one); fallbacks are scaled to its widths. */
+function serverFont(info: LayoutLabels, sizePx = info.font.size_px): string {
+  return `${info.font.weight} ${sizePx}px "${info.font.family}", "DejaVu Sans", "Arial Narrow", sans-serif`;
 }
 
 /** A line's piece on screen, with half its drawn width (px). */
@@ -562,16 +562,16 @@ export class MetroLayers {
       if (scale.px_per_m <= pxPerMetre * (1 + 1e-9)) chosen = i;
     });
     const byStation = chosen >= 0 ? server.byScale[chosen]! : new Map<string, LayoutLabel>();
-    const font = serverFont(server.info);
     for (const [id, { label, feature }] of this.stations) {
       const placed = byStation.get(id);
-      this.showLeader(id, label.anchor, placed && placed.length > 9 ? (placed.slice(9) as number[]) : undefined);
+      this.showLeader(id, label.anchor, placed && placed.length > 10 ? (placed.slice(10) as number[]) : undefined);
       if (!placed) {
         label.text.setAttribute('visibility', 'hidden');
         continue;
       }
-      const [, x0, , x1, , tx, ty, anchor, split] = placed;
-      setLabelText(label, feature.properties.name, split, x1 - x0, server.info.font.line_px, font);
+      const [, x0, , x1, , tx, ty, anchor, split, size] = placed;
+      const { font: type } = server.info;
+      setLabelText(label, feature.properties.name, split, x1 - x0, (type.line_px * size) / type.size_px, serverFont(server.info, size));
       label.text.setAttribute('text-anchor', anchor === 's' ? 'start' : anchor === 'm' ? 'middle' : 'end');
       label.anchor.dx = tx;
       label.anchor.dy = ty;
@@ -646,7 +646,7 @@ function resetLabelText(label: Label, name: string, font: string): void {
  * width the server measured, so a fallback font takes the same room.
  */
 function setLabelText(label: Label, name: string, split: number, width: number, linePx: number, font: string): void {
-  const key = String(split);
+  const key = `${split} ${font}`;
   if (label.text.dataset.split !== key) {
     label.text.dataset.split = key;
     label.text.style.font = font;
