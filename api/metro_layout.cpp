@@ -71,7 +71,8 @@ nlohmann::json solver_json(const metro::SolverReport& s) {
   if (s.label_room.status != "not_run") {
     const auto& r = s.label_room;
     out["label_room"] = {{"status", r.status}, {"rooms", r.rooms}, {"unnamed_before", r.unnamed_before},
-                         {"unnamed_after", r.unnamed_after}, {"rounds", r.rounds}, {"kept", r.kept}};
+                         {"unnamed_after", r.unnamed_after}, {"rounds", r.rounds}, {"single_tries", r.single_tries},
+                         {"kept", r.kept}};
   }
   if (!s.mip) return out;
   const auto& m = *s.mip;

@@ -259,8 +259,8 @@ std::string labels_row(const std::string& network, const std::string& request, c
     row.append(cell);
   }
   const auto& room = r.solver.label_room;
-  std::snprintf(cell, sizeof cell, " %s: %d/%d, %zu -> %zu, %.0f ms |", room.status.c_str(), room.kept, room.rounds,
-                room.unnamed_before, room.unnamed_after, r.timing.label_room);
+  std::snprintf(cell, sizeof cell, " %s: %d/%d+%d, %zu -> %zu, %.0f ms |", room.status.c_str(), room.kept, room.rounds,
+                room.single_tries, room.unnamed_before, room.unnamed_after, r.timing.label_room);
   row.append(cell);
   return row.append("\n");
 }
@@ -270,7 +270,7 @@ void print_labels(const std::vector<std::string>& rows) {
               "whole network and at twice that zoom; overlaps of names with names (at every zoom a placement is "
               "shown at, up to the next one's) or with a line's centre, over all zooms (must be 0); and stations "
               "named at each zoom (the mean edge on screen, px; symbols 12 px across from 75 px on). Room: the layout "
-              "making room for the names left out at 75 px (rounds kept / run, unnamed there before -> after, its "
+              "making room for the names left out at 75 px (tries kept / rounds run + tries for one name, unnamed there before -> after, its "
               "time).\n\n| network | request | time ms | in view | 2x | overlaps |");
   for (double e : metro::kLabelMeanEdgesPx) std::printf(" %.0f px |", e);
   std::printf(" room |\n|---|---|---:|---:|---:|---:|");

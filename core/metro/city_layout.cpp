@@ -28,11 +28,13 @@ std::size_t unnamed_from(const std::vector<LabelScale>& scales, std::size_t firs
 
 // Room for the names left out where symbols are 12 px across (issue 14): rounds of the spacing
 // program that also keep the place each such name wants clear of lines and symbols
-// (metro/station_spacing.hpp, make_room_for_labels). Each round tries the points within 5, 10
-// and 20 mean edges of a wanted name moving of their own (the rest moves only with the whole
-// map): which one wins depends on the network and the round (London, both lengths: 15 -> 4
-// unnamed at 75 px in 3-4 rounds, won by 10 and by 20). A round keeps
-// the try that names the most stations at those zooms, if it names more than before and keeps
+// (metro/station_spacing.hpp, make_room_for_labels), in the usual type and then in the smaller
+// one. Each round tries the points within 5, 10 and 20 mean edges of a wanted name moving of
+// their own (the rest moves only with the whole map): which one wins depends on the network and
+// the round (London, both lengths: 10 -> 1 unnamed at 75 px in 3-4 rounds). Then each name
+// still left out, alone, in each of its six places that need the least room (London uniform:
+// the last one). A try is kept
+// if it names the most stations at those zooms, more than before, and keeps
 // the layout's guarantees against the layout before any room was made: octilinear, no added
 // crossing or order violation more, the smallest gap at least min(it, 0.5) mean edges, at most
 // 1.2 times its displacement (the MIP's guards, metro/mip_polish.hpp, but a name is worth
@@ -65,65 +67,96 @@ void make_room_for_names(const LayoutGraph& g, Layout& layout, const StationLabe
   };
   constexpr int kMaxRounds = 12;
   constexpr double kMoveRadii[] = {5.0, 10.0, 20.0};
-  report.status = "no_gain";
-  while (report.rounds < kMaxRounds && !out.labels[first].wanted.empty()) {
+  struct Try {
+    Layout layout;
+    LayoutQuality quality;
+    std::vector<LabelScale> labels;
+    std::size_t unnamed;
+  };
+  // The layout with room made for `rooms` (the placed names kept clear), points within
+  // `radius` mean edges of them moving, and its names placed keeping `before`'s places; none
+  // when the program finds none or the layout breaks a guarantee.
+  const auto try_rooms = [&](const std::vector<PlacedLabel>& wanted, const std::vector<LabelScale>& before,
+                             double radius) -> std::optional<Try> {
     const auto& scale = out.labels[first];
-    std::vector<LabelRoom> placed;
+    std::vector<LabelRoom> rooms, placed;
+    for (const auto& l : wanted) rooms.push_back({l.node, l.x0, l.y0, l.x1, l.y1});
     for (const auto& l : scale.labels) placed.push_back({l.node, l.x0, l.y0, l.x1, l.y1});
-    if (report.rounds == 0)
-      for (const auto& l : scale.wanted) report.rooms += l.font_px >= style.font_px;
+    LabelRoomParams room;
+    room.scale_px = scale.mean_edge_px;
+    room.symbol_px = scale.symbol_px;
+    room.line_spacing_px = style.line_spacing_px;
+    room.clearance_px = style.clearance_px;
+    room.label_gap_px = style.label_gap_px;
+    room.move_radius = radius;
+    SpacingParams spacing;
+    spacing.time_limit_ms = budget_ms - used_ms();
+    auto candidate = make_room_for_labels(g, layout, rooms, placed, room, spacing);
+    if (!candidate) return std::nullopt;
+    auto quality = measure_layout(g, *candidate);
+    if (!sound(quality)) return std::nullopt;
+    auto labels = place_station_labels(g, *candidate, names, kLabelMeanEdgesPx, LabelStyle{}, &before);
+    const auto unnamed = unnamed_from(labels, first);
+    return Try{std::move(*candidate), quality, std::move(labels), unnamed};
+  };
+  const auto keep = [&](Try& t) {
+    layout = std::move(t.layout);
+    out.labels = std::move(t.labels);
+    out.quality = t.quality;
+    ++report.kept;
+    report.unnamed_after = out.labels[first].unlabelled;
+  };
+  for (const auto& l : out.labels[first].wanted) report.rooms += l.font_px >= style.font_px;
+  report.status = "no_gain";
+  // Rounds: room for every name left out at once.
+  while (report.rounds < kMaxRounds && !out.labels[first].wanted.empty() && report.status != "no_time") {
     ++report.rounds;
-    struct Try {
-      Layout layout;
-      LayoutQuality quality;
-      std::vector<LabelScale> labels;
-      std::size_t unnamed;
-    };
     std::optional<Try> best;
     // Room for the names in the usual type, then in the smaller one (less room, and the only
-    // way for some: London's Ravenscourt Park); each with every move radius.
+    // way for some); each with every move radius.
     for (const bool small : {false, true}) {
-      std::vector<LabelRoom> rooms;
       auto before = out.labels;  // the placement to keep, wanting only the places of this type
       auto& wanted = before[first].wanted;
-      wanted.erase(std::remove_if(wanted.begin(), wanted.end(),
-                                  [&](const PlacedLabel& l) { return (l.font_px < style.font_px) != small; }),
-                   wanted.end());
-      for (const auto& l : wanted) rooms.push_back({l.node, l.x0, l.y0, l.x1, l.y1});
-      if (rooms.empty()) continue;
+      std::erase_if(wanted, [&](const PlacedLabel& l) { return (l.font_px < style.font_px) != small; });
+      if (wanted.empty()) continue;
       for (const double radius : kMoveRadii) {
         if (used_ms() >= budget_ms) {
           report.status = "no_time";
           break;
         }
-        LabelRoomParams room;
-        room.scale_px = scale.mean_edge_px;
-        room.symbol_px = scale.symbol_px;
-        room.line_spacing_px = style.line_spacing_px;
-        room.clearance_px = style.clearance_px;
-        room.label_gap_px = style.label_gap_px;
-        room.move_radius = radius;
-        SpacingParams spacing;
-        spacing.time_limit_ms = budget_ms - used_ms();
-        auto candidate = make_room_for_labels(g, layout, rooms, placed, room, spacing);
-        if (!candidate) continue;
-        auto quality = measure_layout(g, *candidate);
-        if (!sound(quality)) continue;
-        auto labels = place_station_labels(g, *candidate, names, kLabelMeanEdgesPx, LabelStyle{}, &before);
-        const auto unnamed = unnamed_from(labels, first);
-        if (unnamed < (best ? best->unnamed : unnamed_from(out.labels, first)))
-          best = Try{std::move(*candidate), quality, std::move(labels), unnamed};
+        auto t = try_rooms(wanted, before, radius);
+        if (t && t->unnamed < (best ? best->unnamed : unnamed_from(out.labels, first))) best = std::move(t);
       }
     }
     if (!best) break;
-    layout = std::move(best->layout);
-    out.labels = std::move(best->labels);
-    out.quality = best->quality;
-    ++report.kept;
-    report.unnamed_after = out.labels[first].unlabelled;
+    keep(*best);
+  }
+  // Then one name at a time, each in the places that need the least room (the one the rounds
+  // asked for may be blocked where another is not: London's Ravenscourt Park).
+  std::vector<std::uint32_t> left;
+  for (const auto& l : out.labels[first].wanted)
+    if (std::find(left.begin(), left.end(), l.node) == left.end()) left.push_back(l.node);
+  for (const auto v : left) {
+    std::vector<PlacedLabel> places;
+    for (const auto& l : out.labels[first].alternatives)
+      if (l.node == v) places.push_back(l);
+    for (const auto& place : places) {
+      if (used_ms() >= budget_ms) {
+        report.status = "no_time";
+        break;
+      }
+      ++report.single_tries;
+      auto before = out.labels;
+      before[first].wanted = {place};
+      auto t = try_rooms({place}, before, 10.0);
+      if (t && t->unnamed < unnamed_from(out.labels, first)) {
+        keep(*t);
+        break;
+      }
+    }
     if (report.status == "no_time") break;
   }
-  if (report.kept > 0) report.status = "kept";  // a later round may have found no more
+  if (report.kept > 0) report.status = "kept";  // a later try may have found no more
 }
 
 // The MIP's time budget in seconds (see the header for the policy); none: no MIP.

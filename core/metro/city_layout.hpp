@@ -30,7 +30,8 @@ enum class LayoutSolver { automatic, fast, mip };  // the order is in stored lay
 inline constexpr std::size_t kAutoMipStations = 250;
 
 // CPU time for making room for names when asked (CityLayoutParams::label_room_ms; London:
-// 2-4 s in up to 12 rounds of 3 tries, 200-300 ms each; the budget is a backstop).
+// 4-6 s in up to 12 rounds of 6 tries and 6 tries per name left, 200-300 ms each; the budget
+// is a backstop).
 inline constexpr double kLabelRoomCpuMs = 10000;
 
 struct CityLayoutParams {
@@ -51,7 +52,8 @@ struct LabelRoomReport {
   std::string status = "not_run";  // "not_run", "not_needed", "kept", "no_gain", "no_time"
   std::size_t rooms = 0;              // stations asked room for (in the first round)
   std::size_t unnamed_before = 0, unnamed_after = 0;  // at the first such zoom
-  int rounds = 0, kept = 0;
+  int rounds = 0, kept = 0;    // rounds for all names left out at once, and tries kept (of both kinds)
+  int single_tries = 0;        // tries for one name in one of its places, after the rounds
 };
 
 struct SolverReport {

@@ -382,6 +382,23 @@ class Placer {
           if (const int c = roomiest_place(v); c >= 0) out.wanted.push_back(candidate(v, c));
           small_[v] = 0;
         }
+    // And each one's places in either type by the room they need, for a layout making room
+    // for one name at a time.
+    if (ring_)
+      for (auto v : left_out)
+        if (placed_[v] < 0) {
+          std::vector<std::pair<double, PlacedLabel>> places;
+          for (const char small : {0, 1}) {
+            if (small && small_style_.font_px >= style_.font_px) continue;
+            small_[v] = small;
+            for (int c = 0; c < kPlaces; ++c)
+              if (valid(v, c) && !far(c))
+                if (const double need = room_needed(v, c); std::isfinite(need)) places.push_back({need, candidate(v, c)});
+          }
+          small_[v] = 0;
+          std::stable_sort(places.begin(), places.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+          for (std::size_t i = 0; i < places.size() && i < kAlternatives; ++i) out.alternatives.push_back(places[i].second);
+        }
     out.unlabelled = unlabelled;
     return out;
   }
@@ -449,6 +466,7 @@ class Placer {
   // (with 7: 10 before room is made, 4 after); tried last, so they cost only where needed.
   static constexpr int kPlaces = 64, kRingAngles = 48, kRingLevels = 8;
   static constexpr int kCandidates = kPlaces + kRingAngles * 2 * kRingLevels;
+  static constexpr std::size_t kAlternatives = 6;  // places per station left out, for room one at a time
   static bool on_ring(int c) { return c >= kPlaces; }
   static int ring_level(int c) { return on_ring(c) ? (c - kPlaces) / (2 * kRingAngles) : 0; }
   static bool two_line(int c) { return on_ring(c) ? (c - kPlaces) / kRingAngles % 2 == 1 : (c / 16) % 2 == 1; }
@@ -632,6 +650,49 @@ class Placer {
   }
   double widest_half() const {
     return (static_cast<double>(max_lines()) * style_.line_spacing_px / 2 + style_.clearance_px) / scale_;
+  }
+
+  // How far, in px summed, the lines and symbols in candidate c of v would have to move out of
+  // it (each along the best of the eight octilinear directions, as the layout moves them:
+  // metro/station_spacing.cpp, best_separation); infinite when one of v's own lines crosses it.
+  double room_needed(std::uint32_t v, int c) const {
+    const Rect r = rect_of(v, candidate(v, c));
+    double depth = 0;
+    bool own = false;
+    std::vector<int> seen;
+    segment_grid_.near(expanded(r, widest_half()), [&](int i) {
+      if (std::find(seen.begin(), seen.end(), i) != seen.end()) return;
+      seen.push_back(i);
+      const auto& s = segments_[static_cast<std::size_t>(i)];
+      const double half = (static_cast<double>(s.lines) * style_.line_spacing_px / 2 + style_.clearance_px) / scale_;
+      if (rect_segment_distance(r, s.a, s.b) >= half) return;
+      const auto [a, b] = g_.edges[s.edge];
+      if (a == v || b == v) own = true;
+      else depth += depth_in(r, s.a, s.b, half);
+    });
+    if (own) return std::numeric_limits<double>::infinity();
+    const double reach = (symbol_px_ + static_cast<double>(max_lines()) * style_.line_spacing_px + style_.clearance_px) / scale_;
+    symbol_grid_.near(expanded(r, reach), [&](int i) {
+      const auto u = static_cast<std::uint32_t>(i);
+      const double need = (reach_px(u) + style_.clearance_px) / scale_;
+      if (u != v && rect_point_distance(r, L_.pos[u]) < need) depth += depth_in(r, L_.pos[u], L_.pos[u], need);
+    });
+    return depth * scale_;
+  }
+  // How far an obstacle (points a, b: a segment, or one point) would have to move to clear
+  // box r by `need`, along the best of the eight octilinear directions; 0 when it is clear.
+  static double depth_in(const Rect& r, XY a, XY b, double need) {
+    static constexpr double k = std::numbers::sqrt2 / 2;
+    static constexpr std::array<XY, 8> dirs = {XY{1, 0}, XY{k, k}, XY{0, 1}, XY{-k, k}, XY{-1, 0}, XY{-k, -k}, XY{0, -1}, XY{k, -k}};
+    const std::array<XY, 4> corners = {XY{r.x0, r.y0}, XY{r.x1, r.y0}, XY{r.x1, r.y1}, XY{r.x0, r.y1}};
+    double best = -std::numeric_limits<double>::infinity();
+    for (const XY w : dirs) {
+      double apart = std::numeric_limits<double>::infinity();
+      for (const XY c : corners)
+        for (const XY p : {a, b}) apart = std::min(apart, w.x * (p.x - c.x) + w.y * (p.y - c.y));
+      best = std::max(best, apart);
+    }
+    return std::max(0.0, need - best);
   }
 
   // Whether any place of v is clear of lines and symbols (the names aside).

@@ -88,6 +88,9 @@ struct LabelScale {
   // them its own), for the layout to make room (metro/station_spacing.hpp, LabelRoom); once in
   // font_px and, where the style has a smaller type, once more in that (see font_px).
   std::vector<PlacedLabel> wanted;
+  // And for each of them its six places (of the sixteen, in either type) that need the least
+  // room: the lines and symbols in them moved the least distance out, best first.
+  std::vector<PlacedLabel> alternatives;
 };
 
 struct StationLabelInput {

@@ -347,7 +347,9 @@ export interface LabelRoom {
   /** Stations without a name at the first zoom with symbols 12 px across, before and after. */
   unnamed_before: number;
   unnamed_after: number;
+  /** Rounds for all names left out at once, then tries for one name in one place; tries kept of either kind. */
   rounds: number;
+  single_tries: number;
   kept: number;
 }
 
