@@ -77,7 +77,7 @@ void make_room_for_names(const LayoutGraph& g, Layout& layout, const StationLabe
   // `radius` mean edges of them moving, and its names placed keeping `before`'s places; none
   // when the program finds none or the layout breaks a guarantee.
   const auto try_rooms = [&](const std::vector<PlacedLabel>& wanted, const std::vector<LabelScale>& before,
-                             double radius) -> std::optional<Try> {
+                             double radius, bool keep_placed) -> std::optional<Try> {
     const auto& scale = out.labels[first];
     std::vector<LabelRoom> rooms, placed;
     for (const auto& l : wanted) rooms.push_back({l.node, l.x0, l.y0, l.x1, l.y1});
@@ -89,6 +89,7 @@ void make_room_for_names(const LayoutGraph& g, Layout& layout, const StationLabe
     room.clearance_px = style.clearance_px;
     room.label_gap_px = style.label_gap_px;
     room.move_radius = radius;
+    room.keep_placed = keep_placed;
     SpacingParams spacing;
     spacing.time_limit_ms = budget_ms - used_ms();
     auto candidate = make_room_for_labels(g, layout, rooms, placed, room, spacing);
@@ -124,7 +125,7 @@ void make_room_for_names(const LayoutGraph& g, Layout& layout, const StationLabe
           report.status = "no_time";
           break;
         }
-        auto t = try_rooms(wanted, before, radius);
+        auto t = try_rooms(wanted, before, radius, true);
         if (t && t->unnamed < (best ? best->unnamed : unnamed_from(out.labels, first))) best = std::move(t);
       }
     }
@@ -148,7 +149,7 @@ void make_room_for_names(const LayoutGraph& g, Layout& layout, const StationLabe
       ++report.single_tries;
       auto before = out.labels;
       before[first].wanted = {place};
-      auto t = try_rooms({place}, before, 10.0);
+      auto t = try_rooms({place}, before, 10.0, false);
       if (t && t->unnamed < unnamed_from(out.labels, first)) {
         keep(*t);
         break;

@@ -440,7 +440,9 @@ std::optional<std::vector<XY>> solve_round(const LayoutGraph& g, const Drawing& 
 
 // Rows asking for each room's clearance (LabelRoom): for every segment of another edge and
 // every other station near the box now, w.(q - v) - M (w.o + need) / S >= 0, with w the
-// octilinear direction that separates box and obstacle best now, q the obstacle's point
+// octilinear direction that separates box and obstacle best now (for an obstacle in the box,
+// the one out of its far side, away from the station: London's Ravenscourt Park asked the
+// Hammersmith & City line to move west onto the station, and nothing moved), q the obstacle's point
 // nearest along w, o the box's corner furthest along w (px, y up; the box is o * M / S from
 // the station) and need the obstacle's half width and the clearance. Soft: a slack priced
 // w_room, at most what is missing now, so no obstacle comes closer to a box than it is.
@@ -467,8 +469,22 @@ void add_room_rows(MipModel& m, const LayoutGraph& g, const Drawing& d, const Pr
     const auto add = [&](std::initializer_list<std::uint32_t> ids, double need_px) {
       std::vector<XY> pts;
       for (auto id : ids) pts.push_back(d.pt[id]);
-      const auto [w, apart] = best_separation(pts, box);
+      auto [w, apart] = best_separation(pts, box);
       if (only_clear_now && apart < need_px * k) return;
+      if (apart < 0) {
+        // In the box now: pushed out of its far side, away from the station (towards the
+        // station it would run into the station, the nearest way out often being that way).
+        XY c{(box[0].x + box[3].x) / 2, (box[0].y + box[3].y) / 2}, near = pts[0];
+        if (pts.size() == 2) {
+          const XY ab = minus(pts[1], pts[0]);
+          const double len2 = dot(ab, ab);
+          const double t = len2 > 0 ? std::clamp(dot(minus(c, pts[0]), ab) / len2, 0.0, 1.0) : 0.0;
+          near = {pts[0].x + t * ab.x, pts[0].y + t * ab.y};
+        }
+        const XY out = minus(near, at);
+        for (int u = 0; u < 8; ++u)
+          if (dot(kDir[u], out) > dot(kDir[w], out)) w = u;
+      }
       std::uint32_t q = *ids.begin();
       for (auto id : ids)
         if (dot(kDir[w], d.pt[id]) < dot(kDir[w], d.pt[q])) q = id;
@@ -496,7 +512,7 @@ void add_room_rows(MipModel& m, const LayoutGraph& g, const Drawing& d, const Pr
   // The placed names whose stations may move (within move_radius of a room's station).
   const double moving = rp.move_radius * mean;
   for (const auto& label : placed) {
-    if (label.station >= d.stations) continue;
+    if (label.station >= d.stations || !rp.keep_placed) continue;
     for (const auto& room : rooms)
       if (room.station < d.stations && dist(d.pt[label.station], d.pt[room.station]) <= moving) {
         keep_clear(label, true);

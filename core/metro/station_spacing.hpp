@@ -88,6 +88,9 @@ struct LabelRoomParams {
   double radius = 1.0;           // obstacles within this many mean edges of a box get a row
   double move_radius = 5.0;      // points within this many mean edges of a room's station move; the rest stay
   double w_room = 100.0;         // per unit of a box's clearance short of its need
+  // The placed names near a room kept clear of the lines and symbols they are clear of now
+  // (hard rows; off: a try for one name may cost others theirs, for the caller to weigh).
+  bool keep_placed = true;
 };
 
 // One round of the spacing program (the same columns, direction, floor and gap rows, with
