@@ -191,6 +191,20 @@ TEST(LayoutImprovement, LondonGetsRoomForNamesInTheBackground) {
   EXPECT_EQ(room["unnamed_after"].get<std::size_t>(), unnamed);
   EXPECT_LT(unnamed, room["unnamed_before"].get<std::size_t>());
   EXPECT_EQ(named + unnamed, fast_named + fast_unnamed);  // the same stations
+  // Each name's type size: the usual one, or the smaller one from 75 px on, as counted.
+  const auto& font = improved["labels"]["font"];
+  for (const auto& scale : improved["labels"]["scales"]) {
+    std::size_t small = 0;
+    for (const auto& label : scale["labels"]) {
+      ASSERT_GE(label.size(), 10u);
+      const double size = label[9].get<double>();
+      if (size == font["size_px"].get<double>()) continue;
+      EXPECT_EQ(size, font["small_px"].get<double>());
+      EXPECT_GE(scale["mean_edge_px"].get<double>(), 75);
+      ++small;
+    }
+    EXPECT_EQ(scale["small"].get<std::size_t>(), small);
+  }
   // The layout's guarantees hold (fast London: none added, none violated, 0.53).
   const auto& q = improved["quality"];
   EXPECT_EQ(q["octilinear_share"], 1.0);
