@@ -285,5 +285,15 @@ TEST(LayoutImprovement, ShutdownStopsARunningImprovement) {
   EXPECT_EQ(stopped.output.find("failed"), std::string::npos) << stopped.output;
 }
 
+TEST(ServeOptions, ImproveMipOutsideZeroTo600SecondsIsRefusedAtStart) {
+  TempDir dir;
+  const std::string db = dir.file("t.db");
+  for (const std::string value : {"-1", "601", "nan", "inf", "ten"}) {
+    auto r = run_command({kTourmapBin, "serve", "--db", db, "--port", "0", "--improve-mip", value});
+    EXPECT_EQ(r.exit_code, 2) << value << ": " << r.output;
+    EXPECT_NE(r.output.find("improve-mip"), std::string::npos) << r.output;
+  }
+}
+
 }  // namespace
 }  // namespace tourmap::test
