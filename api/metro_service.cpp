@@ -395,7 +395,11 @@ void MetroService::improve(const std::shared_ptr<const CityMetroData>& data, con
   const bool names_won = solver.contains("label_room") && solver["label_room"].value("kept", 0) > 0;
   if (!mip_won && !names_won) {
     ++not_improved_;
-    mark_not_improved(key);
+    // What the job tried and why it kept nothing, for the client to say.
+    nlohmann::json tried = nlohmann::json::object();
+    for (const char* part : {"mip", "label_room"})
+      if (solver.contains(part)) tried[part] = solver[part];
+    mark_not_improved(key, tried.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
     return;
   }
   replace_layout(key, with_body(*result, with_improvement(result->body, "applied")));
@@ -415,9 +419,10 @@ void MetroService::improve(const std::shared_ptr<const CityMetroData>& data, con
   event_sink_(event.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace));
 }
 
-// The MIP did not win: the cached fast layout (in memory, else in the store) says that
-// nothing follows, so it is not scheduled again.
-void MetroService::mark_not_improved(const std::string& key) {
+// The improvement did not win: the cached fast layout (in memory, else in the store) says that
+// nothing follows, so it is not scheduled again, and what was tried (solver.tried: the job's
+// `mip` and `label_room` reports, compact JSON in `tried`).
+void MetroService::mark_not_improved(const std::string& key, const std::string& tried) {
   std::shared_ptr<const CityLayout> current;
   if (auto hit = layouts_.get(key)) {
     current = *hit;
@@ -426,7 +431,12 @@ void MetroService::mark_not_improved(const std::string& key) {
     if (auto stored = store::cache_get(*db, key)) current = layout_from_body(std::move(stored->body));
   }
   if (!current || !improvement_of(current->body).empty()) return;
-  replace_layout(key, with_body(*current, with_improvement(current->body, "none")));
+  // Spliced in after `"solver":{` as the improvement field is (see with_improvement): the
+  // body stays as it was but for these two members.
+  auto body = current->body;
+  if (const auto at = solver_members(body); at != std::string::npos && !tried.empty())
+    body.insert(at, "\"tried\":" + tried + (body[at] == '}' ? "" : ","));
+  replace_layout(key, with_body(*current, with_improvement(body, "none")));
 }
 
 void MetroService::replace_layout(const std::string& key, const std::shared_ptr<const CityLayout>& layout) {

@@ -129,7 +129,7 @@ class MetroService {
                                const CityLayout& layout);
   void improve(const std::shared_ptr<const CityMetroData>& data, const LayoutRequest& req,
                const std::atomic<bool>& stop);
-  void mark_not_improved(const std::string& key);
+  void mark_not_improved(const std::string& key, const std::string& tried);
   void replace_layout(const std::string& key, const std::shared_ptr<const CityLayout>& layout);
   bool current_version(const CityMetroData& data);
   bool improvable(const CityMetroData& data) const;

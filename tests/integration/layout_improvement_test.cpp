@@ -213,6 +213,29 @@ TEST(LayoutImprovement, LondonGetsRoomForNamesInTheBackground) {
   EXPECT_GE(q["min_station_gap_ratio"].get<double>(), 0.5 - 1e-3);
 }
 
+TEST(LayoutImprovement, AnImprovementThatDoesNotWinSaysWhatItTried) {
+  // 50 ms of CBC find no layout with fewer bends, and Freiburg's names need no room: the fast
+  // layout stays, marked "none", with the job's reports.
+  LiveServer live({"--improve-mip", "0.05"});
+  import_freiburg(live);
+  const auto fast = live.get_json(kLayout);
+  ASSERT_EQ(fast["solver"]["improvement"], "scheduled");
+  const auto until = Clock::now() + kJobWait;
+  while (Clock::now() < until && gauge(live, "tourmap_layout_improvements_not_better") < 1) std::this_thread::sleep_for(100ms);
+  ASSERT_EQ(gauge(live, "tourmap_layout_improvements_not_better"), 1);
+  const auto kept = live.get_json(kLayout);
+  EXPECT_EQ(kept["solver"]["improvement"], "none");
+  EXPECT_EQ(kept["solver"]["kind"], "fast");
+  EXPECT_EQ(kept["stations"], fast["stations"]);  // the same layout
+  const auto& tried = kept["solver"]["tried"];
+  ASSERT_TRUE(tried.contains("mip")) << kept["solver"];
+  EXPECT_FALSE(tried["mip"].value("accepted", false)) << tried;
+  EXPECT_EQ(tried["label_room"]["status"], "not_needed") << tried;
+  // Served as the body was, and not scheduled again.
+  EXPECT_EQ(live.get_json(kLayout)["solver"], kept["solver"]);
+  EXPECT_EQ(gauge(live, "tourmap_layout_improvements_scheduled"), 1);
+}
+
 TEST(LayoutImprovement, FastAndMipRequestsScheduleNothing) {
   LiveServer live;
   import_freiburg(live);

@@ -335,6 +335,8 @@ export interface LayoutSolver {
    * improved layout.
    */
   improvement?: 'scheduled' | 'none' | 'applied';
+  /** With improvement "none" after a background improvement ran: what it tried, none of it kept. */
+  tried?: { mip?: LayoutSolver['mip']; label_room?: LabelRoom };
   mip?: { accepted?: boolean; status?: string; reason?: string; time_ms?: number; gap?: number | null };
   /** Room the background improvement made for names left out at 75 px (metro/city_layout.hpp). */
   label_room?: LabelRoom;

@@ -1,4 +1,5 @@
 import type { LayoutAnswer } from '../api/client';
+import type { LayoutSolver } from '../api/types';
 import { h } from '../ui/dom';
 import { HEAT_GRADIENT } from './heat-layer';
 
@@ -75,6 +76,7 @@ export class LayoutInfo {
         ? 'The server improves this layout in the background (fewer bends, room for names): the map changes to it if it is better'
         : '',
       solver.improvement === 'applied' && applied.length > 0 ? `Improved in the background: ${applied.join(', ')}` : '',
+      solver.improvement === 'none' && solver.tried ? `Kept after trying in the background: ${triedText(solver.tried)}` : '',
     ]
       .filter(Boolean)
       .join('. ');
@@ -142,4 +144,13 @@ export class LayoutInfo {
     window.clearInterval(this.timer);
     this.timer = 0;
   }
+}
+
+/** What a background improvement tried and why none of it was kept, in words. */
+function triedText(tried: NonNullable<LayoutSolver['tried']>): string {
+  const parts: string[] = [];
+  if (tried.mip) parts.push(`the MIP: ${tried.mip.reason ?? tried.mip.status ?? 'no result'}`);
+  const room = tried.label_room;
+  if (room && room.status !== 'not_needed') parts.push(`room for ${room.rooms} station names: ${room.status === 'no_time' ? 'out of time' : 'none more named'}`);
+  return parts.length > 0 ? parts.join('; ') : 'nothing to improve';
 }
