@@ -31,10 +31,11 @@ std::size_t unnamed_from(const std::vector<LabelScale>& scales, std::size_t firs
 // (metro/station_spacing.hpp, make_room_for_labels), in the usual type and then in the smaller
 // one. Each round tries the points within 5, 10 and 20 mean edges of a wanted name moving of
 // their own (the rest moves only with the whole map): which one wins depends on the network and
-// the round (London, both lengths: 10 -> 1 unnamed at 75 px in 3-4 rounds). Then each name
-// still left out, alone, in each of its six places that need the least room (London uniform:
-// the last one). A try is kept
-// if it names the most stations at those zooms, more than before, and keeps
+// the round (London: 10 -> 1 unnamed at 75 px in 3-4 rounds, uniform lengths 10 -> 0). Then
+// each name still left out, alone, in each of its six places that need the least room (it
+// named the last one of an earlier version of London uniform; London's last one now loses
+// others each time). A try is kept if it names the most stations at those zooms, more than
+// before, and keeps
 // the layout's guarantees against the layout before any room was made: octilinear, no added
 // crossing or order violation more, the smallest gap at least min(it, 0.5) mean edges, at most
 // 1.2 times its displacement (the MIP's guards, metro/mip_polish.hpp, but a name is worth
@@ -133,7 +134,7 @@ void make_room_for_names(const LayoutGraph& g, Layout& layout, const StationLabe
     keep(*best);
   }
   // Then one name at a time, each in the places that need the least room (the one the rounds
-  // asked for may be blocked where another is not: London's Ravenscourt Park).
+  // asked for may be blocked where another is not), the names around it free to move.
   std::vector<std::uint32_t> left;
   for (const auto& l : out.labels[first].wanted)
     if (std::find(left.begin(), left.end(), l.node) == left.end()) left.push_back(l.node);
