@@ -446,6 +446,26 @@ std::optional<std::vector<XY>> solve_round(const LayoutGraph& g, const Drawing& 
 // nearest along w, o the box's corner furthest along w (px, y up; the box is o * M / S from
 // the station) and need the obstacle's half width and the clearance. Soft: a slack priced
 // w_room, at most what is missing now, so no obstacle comes closer to a box than it is.
+// A name's box in layout units: its corners in px from the station (y up), the box at the
+// station, and the neighbourhood (reach around it) whose obstacles get rows.
+struct NameBox {
+  std::array<XY, 4> corner;
+  std::vector<XY> box;
+  double x0, x1, y0, y1;
+  bool near(XY a, XY b) const {
+    return std::max(a.x, b.x) >= x0 && std::min(a.x, b.x) <= x1 && std::max(a.y, b.y) >= y0 && std::min(a.y, b.y) <= y1;
+  }
+};
+
+NameBox name_box(const LabelRoom& label, XY at, double k, double reach) {
+  NameBox b;
+  b.corner = {XY{label.x0, -label.y0}, XY{label.x1, -label.y0}, XY{label.x0, -label.y1}, XY{label.x1, -label.y1}};
+  for (XY c : b.corner) b.box.push_back({at.x + c.x * k, at.y + c.y * k});
+  b.x0 = at.x + label.x0 * k - reach, b.x1 = at.x + label.x1 * k + reach;
+  b.y0 = at.y - label.y1 * k - reach, b.y1 = at.y - label.y0 * k + reach;
+  return b;
+}
+
 void add_room_rows(MipModel& m, const LayoutGraph& g, const Drawing& d, const Program& prog, double mean,
                    const std::vector<LabelRoom>& rooms, const std::vector<LabelRoom>& placed, const LabelRoomParams& rp) {
   const double k = mean / rp.scale_px;  // layout units per px now
@@ -457,15 +477,9 @@ void add_room_rows(MipModel& m, const LayoutGraph& g, const Drawing& d, const Pr
   const auto keep_clear = [&](const LabelRoom& label, bool only_clear_now) {
     const auto v = label.station;
     const XY at = d.pt[v];
-    const std::array<XY, 4> corner = {XY{label.x0, -label.y0}, XY{label.x1, -label.y0}, XY{label.x0, -label.y1},
-                                      XY{label.x1, -label.y1}};
-    std::vector<XY> box;
-    for (XY c : corner) box.push_back({at.x + c.x * k, at.y + c.y * k});
-    const double bx0 = at.x + label.x0 * k - reach, bx1 = at.x + label.x1 * k + reach;
-    const double by0 = at.y - label.y1 * k - reach, by1 = at.y - label.y0 * k + reach;
-    const auto near = [&](XY a, XY b) {
-      return std::max(a.x, b.x) >= bx0 && std::min(a.x, b.x) <= bx1 && std::max(a.y, b.y) >= by0 && std::min(a.y, b.y) <= by1;
-    };
+    const NameBox nb = name_box(label, at, k, reach);
+    const auto& corner = nb.corner;
+    const auto& box = nb.box;
     const auto add = [&](std::initializer_list<std::uint32_t> ids, double need_px) {
       std::vector<XY> pts;
       for (auto id : ids) pts.push_back(d.pt[id]);
@@ -500,14 +514,14 @@ void add_room_rows(MipModel& m, const LayoutGraph& g, const Drawing& d, const Pr
     };
     for (const auto& s : d.seg) {
       const auto [a, b] = g.edges[s.edge];
-      if (a == v || b == v || !near(d.pt[s.p], d.pt[s.q])) continue;
+      if (a == v || b == v || !nb.near(d.pt[s.p], d.pt[s.q])) continue;
       std::vector<std::uint32_t> lines = g.edge_lines[s.edge];
       std::sort(lines.begin(), lines.end());
       const auto n = static_cast<double>(std::unique(lines.begin(), lines.end()) - lines.begin());
       add({s.p, s.q}, std::max(1.0, n) * rp.line_spacing_px / 2 + rp.clearance_px);
     }
     for (std::uint32_t u = 0; u < d.stations; ++u)
-      if (u != v && near(d.pt[u], d.pt[u])) add({u}, rp.symbol_px + rp.clearance_px);
+      if (u != v && nb.near(d.pt[u], d.pt[u])) add({u}, rp.symbol_px + rp.clearance_px);
   };
   // The placed names whose stations may move (within move_radius of a room's station).
   const double moving = rp.move_radius * mean;
@@ -524,32 +538,19 @@ void add_room_rows(MipModel& m, const LayoutGraph& g, const Drawing& d, const Pr
     if (v >= d.stations) continue;
     keep_clear(room, false);
     const XY at = d.pt[v];
-    const std::array<XY, 4> corner = {XY{room.x0, -room.y0}, XY{room.x1, -room.y0}, XY{room.x0, -room.y1},
-                                      XY{room.x1, -room.y1}};
-    std::vector<XY> box;
-    for (XY c : corner) box.push_back({at.x + c.x * k, at.y + c.y * k});
-    const double bx0 = at.x + room.x0 * k - reach, bx1 = at.x + room.x1 * k + reach;
-    const double by0 = at.y - room.y1 * k - reach, by1 = at.y - room.y0 * k + reach;
-    const auto near = [&](XY a, XY b) {
-      return std::max(a.x, b.x) >= bx0 && std::min(a.x, b.x) <= bx1 && std::max(a.y, b.y) >= by0 && std::min(a.y, b.y) <= by1;
-    };
+    const NameBox nb = name_box(room, at, k, reach);
     // Other names (placed ones, and the rooms after this one): both boxes move with their
     // stations, so w.(u - v) - M (max w.o_v - min w.o_u + gap) / S >= 0.
-    const auto corners = [](const LabelRoom& r) {
-      return std::array<XY, 4>{XY{r.x0, -r.y0}, XY{r.x1, -r.y0}, XY{r.x0, -r.y1}, XY{r.x1, -r.y1}};
-    };
     for (const auto* list : {&placed, &rooms})
       for (const auto& other : *list) {
         if (other.station == v || other.station >= d.stations || (list == &rooms && &other <= &room)) continue;
         const XY u = d.pt[other.station];
-        const auto oc = corners(other);
-        std::vector<XY> other_box;
-        for (XY c : oc) other_box.push_back({u.x + c.x * k, u.y + c.y * k});
-        if (!near(other_box[0], other_box[3])) continue;
-        const int w = best_separation(other_box, box).first;
+        const NameBox ob = name_box(other, u, k, 0);
+        if (!nb.near(ob.box[0], ob.box[3])) continue;
+        const int w = best_separation(ob.box, nb.box).first;
         double far = -std::numeric_limits<double>::infinity(), close = std::numeric_limits<double>::infinity();
-        for (XY c : corner) far = std::max(far, dot(kDir[w], c));
-        for (XY c : oc) close = std::min(close, dot(kDir[w], c));
+        for (XY c : nb.corner) far = std::max(far, dot(kDir[w], c));
+        for (XY c : ob.corner) close = std::min(close, dot(kDir[w], c));
         const double coef = (far - close + rp.label_gap_px) / rp.scale_px;
         Expr e;
         e.terms = {{prog.mean, -coef}};
