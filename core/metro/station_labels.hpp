@@ -51,6 +51,9 @@ struct LabelStyle {
   // Names go round the ring and onto leaders only from this zoom on (symbols 12 px across):
   // in an overview, a name that does not fit beside its symbol is better left out.
   double ring_min_mean_edge_px = 75;
+  // From that zoom on, a name still left out and up to this many names around it are placed
+  // again together, exactly within a search limit (metro/label_choice.hpp); 0: never.
+  std::size_t exact_group = 24;
   // A station symbol's radius grows with the zoom: this share of the mean edge on screen, within
   // [min, max] px. A symbol on a bundle of n lines reaches (n - 1) / 2 line spacings further.
   // 12 px across at 75 px, the first zoom names are placed for with the ring (with a tenth,

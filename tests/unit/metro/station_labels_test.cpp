@@ -1,5 +1,11 @@
 #include "metro/station_labels.hpp"
 
+#include "geo/projection.hpp"
+#include "load/metro_load.hpp"
+#include "metro/city_input.hpp"
+#include "metro/city_layout.hpp"
+#include "test_data.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -290,6 +296,41 @@ TEST(StationLabels, SymbolsGrowWithTheZoomWithinBounds) {
   EXPECT_DOUBLE_EQ(style.symbol_px(10), style.symbol_min_px);
   EXPECT_DOUBLE_EQ(style.symbol_px(75), 6);  // 12 px across where names go round the ring
   EXPECT_DOUBLE_EQ(style.symbol_px(1000), style.symbol_max_px);
+}
+
+TEST(StationLabels, LondonsCentreIsNamedByMovingSeveralNamesAtOnce) {
+  // London's fast layout at 75 px (symbols 12 px across): the one-step repair leaves ten names
+  // out in the centre; placing each one left out again together with the names around it (an
+  // exact search) names all but a few, still without overlaps.
+  const auto net = load::load_metro_station_csvs(test::data_file("metro/london.stations.csv"),
+                                                 test::data_file("metro/london.lines.csv"),
+                                                 test::data_file("metro/london.connections.csv"));
+  const auto in = make_city_metro_input(net, {}, geo::projection_for(model::bbox_of(net)));
+  CityLayoutParams params;
+  params.solver = LayoutSolver::fast;
+  const auto city = layout_city(in, {}, params);
+  StationLabelInput names;
+  names.names = in.names;
+  names.priority = city.node_worth;
+  for (const auto& lines : in.graph.edge_lines) {
+    auto distinct = lines;
+    std::sort(distinct.begin(), distinct.end());
+    names.lines.push_back(static_cast<std::size_t>(std::unique(distinct.begin(), distinct.end()) - distinct.begin()));
+  }
+  LabelStyle one_step;
+  one_step.exact_group = 0;
+  const auto before = place_station_labels(in.graph, city.layout, names, {75}, one_step);
+  const auto after = place_station_labels(in.graph, city.layout, names, {75}, LabelStyle{});
+  ASSERT_EQ(before.size(), 1u);
+  ASSERT_EQ(after.size(), 1u);
+  EXPECT_GE(before[0].unlabelled, 5u);
+  EXPECT_LE(after[0].unlabelled + 5, before[0].unlabelled);
+  EXPECT_EQ(after[0].labels.size() + after[0].unlabelled, in.station_count);
+  const auto& s = after[0];
+  for (std::size_t i = 0; i < s.labels.size(); ++i)
+    for (std::size_t j = i + 1; j < s.labels.size(); ++j)
+      EXPECT_FALSE(overlap(layout_box(city.layout, s, s.labels[i]), layout_box(city.layout, s, s.labels[j])))
+          << in.names[s.labels[i].node] << " / " << in.names[s.labels[j].node];
 }
 
 }  // namespace
