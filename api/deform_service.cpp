@@ -1,6 +1,7 @@
 #include "deform_service.hpp"
 
 #include "geojson.hpp"
+#include "positions_binary.hpp"
 #include "json_out.hpp"
 #include "params.hpp"
 #include "roads_in.hpp"
@@ -268,10 +269,18 @@ Response DeformService::handle(DeformApp app, const Request& req) {
   std::size_t scaled_edges = 0;
   auto targets = targets_for(r, *net, &scaled_edges);
 
-  std::string result_key = net->key + "|" + app_name(app) + "|" + r.canonical;
+  // Positions as binary (api/positions_binary.hpp) for a client that asks for them.
+  const bool binary = accepts_octet_stream(req.accept);
+  if (binary && r.roads_output != DeformRequest::RoadsOutput::positions)
+    throw ApiError(406, "not_acceptable",
+                   "output.roads: Accept: application/octet-stream answers only \"output\": {\"roads\": \"positions\"}",
+                   "output.roads");
+  const char* content_type = binary ? "application/octet-stream" : "application/json";
+  std::string result_key = net->key + "|" + app_name(app) + "|" + r.canonical + (binary ? "|binary" : "");
   if (auto hit = results_.get(result_key)) {
     Response cached;
     cached.body = **hit;
+    cached.content_type = content_type;
     cached.headers.emplace_back("X-Result-Cache", "hit");
     return cached;
   }
@@ -328,7 +337,9 @@ Response DeformService::handle(DeformApp app, const Request& req) {
   if (!net->entry->info.attribution.empty()) out["attribution"].push_back(net->entry->info.attribution);
   // The big part (roads or positions) is written as text and spliced in front of the rest.
   std::string roads_text;
-  if (r.roads_output == DeformRequest::RoadsOutput::geojson) {
+  if (binary) {
+    // No positions in the text: they follow it as float32 pairs.
+  } else if (r.roads_output == DeformRequest::RoadsOutput::geojson) {
     roads_text = R"({"roads":)" + roads_geojson(*net->entry, std::nullopt, false, &deformed) + ",";
   } else if (r.roads_output == DeformRequest::RoadsOutput::positions) {
     roads_text = R"({"positions":)";
@@ -342,6 +353,10 @@ Response DeformService::handle(DeformApp app, const Request& req) {
 
   Response resp = json_response(out);
   if (!roads_text.empty()) resp.body = roads_text + resp.body.substr(1);
+  if (binary) {
+    resp.body = encode_positions_binary(resp.body, deformed);
+    resp.content_type = content_type;
+  }
   results_.put(result_key, std::make_shared<const std::string>(resp.body), resp.body.size());
   return resp;
 }

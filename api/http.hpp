@@ -19,6 +19,7 @@ struct Request {
   std::map<std::string, std::string> params;  // path parameters from the route pattern
   std::string body;
   std::string content_type;
+  std::string accept;  // the Accept header ("" when absent)
 
   // Query parameter or nullptr.
   const std::string* query_param(const std::string& name) const {

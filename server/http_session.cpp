@@ -274,6 +274,7 @@ void HttpSession::handle(Request&& req) {
   areq.query = std::move(target->query);
   areq.body = std::move(req.body());
   areq.content_type = std::string(req[http::field::content_type]);
+  areq.accept = std::string(req[http::field::accept]);
 
   auto match = state_.router.match(areq);
   if (!match.route) {

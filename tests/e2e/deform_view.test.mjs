@@ -58,6 +58,12 @@ async function run(state) {
   const undeformed = await canvasState(page);
   check(undeformed.requests === 0, `${undeformed.requests} deformations drawn before any focus region`);
 
+  // Every deformation answer comes as binary positions (api/positions_binary.hpp).
+  const answerTypes = [];
+  page.on('response', (response) => {
+    if (response.url().includes('/api/v1/deform/')) answerTypes.push(response.headers()['content-type'] ?? '');
+  });
+
   // A click in the middle of the map adds a focus region; the server's answer is drawn.
   const map = await page.locator('[data-testid=road-map]').boundingBox();
   await page.mouse.click(map.x + map.width / 2, map.y + map.height / 2);
@@ -80,6 +86,9 @@ async function run(state) {
   check(dragged.errors === 0, `${dragged.errors} deformation requests failed`);
   check(await page.locator('[data-testid=deform-error]').isHidden(), 'an error box is shown');
   state.summary.push(`dragging it drew ${dragged.requests - focused.requests} more deformations`);
+  check(answerTypes.length > 0 && answerTypes.every((type) => type === 'application/octet-stream'),
+    `deformations came as ${[...new Set(answerTypes)].join(', ') || 'nothing'}, not as binary positions`);
+  state.summary.push(`${answerTypes.length} answers as binary positions`);
 
   const stats = page.locator('[data-testid=deform-stats]');
   const residue = Number(await stats.getAttribute('data-residue'));

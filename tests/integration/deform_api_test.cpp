@@ -5,6 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstring>
+
 namespace tourmap::test {
 namespace {
 
@@ -81,6 +84,71 @@ TEST_F(DeformApi, DraggingReusesTheFactorization) {
   auto repeat = post("focus", moved_body);
   EXPECT_EQ(repeat.header("x-result-cache"), "hit");
   EXPECT_EQ(nlohmann::json::parse(repeat.body)["positions"], second["positions"]);
+}
+
+// The binary positions (api/positions_binary.hpp): the JSON answer's positions to float32
+// offsets from a float64 origin, its other fields as JSON in front.
+TEST_F(DeformApi, PositionsComeAsBinaryWhenAskedFor) {
+  const auto body = focus_body(-122.302, 37.809);
+  const auto json = ok("focus", body);
+  const auto binary_post = [&] {
+    return http_request(live->port(), "POST", "/api/v1/deform/focus",
+                        {{"Content-Type", "application/json"}, {"Accept", "application/octet-stream"}}, body.dump());
+  };
+  const auto r = binary_post();
+  ASSERT_EQ(r.status, 200) << r.body;
+  EXPECT_EQ(r.header("content-type"), "application/octet-stream");
+  const std::string& b = r.body;
+  ASSERT_GE(b.size(), 32u);
+  const auto u32 = [&](std::size_t at) {
+    std::uint32_t v;
+    std::memcpy(&v, b.data() + at, 4);
+    return v;
+  };
+  const auto f64 = [&](std::size_t at) {
+    double v;
+    std::memcpy(&v, b.data() + at, 8);
+    return v;
+  };
+  EXPECT_EQ(b.substr(0, 4), "TMDP");
+  EXPECT_EQ(u32(4), 1u);
+  const std::size_t json_bytes = u32(8), points = u32(12);
+  ASSERT_EQ(points, (*topology)["node_ids"].size());
+  const std::size_t start = (32 + json_bytes + 3) / 4 * 4;
+  ASSERT_EQ(b.size(), start + 8 * points);
+  const auto meta = nlohmann::json::parse(b.substr(32, json_bytes));
+  EXPECT_FALSE(meta.contains("positions"));
+  EXPECT_EQ(meta["stats"]["residue"], json["stats"]["residue"]);
+  EXPECT_EQ(meta["roads_id"], "west-oakland");
+  const double lon0 = f64(16), lat0 = f64(24);
+  const auto& expected = json["positions"];
+  double worst = 0;
+  for (std::size_t i = 0; i < points; ++i)
+    for (std::size_t k = 0; k < 2; ++k) {
+      float offset;
+      std::memcpy(&offset, b.data() + start + 8 * i + 4 * k, 4);
+      worst = std::max(worst, std::abs((k ? lat0 : lon0) + offset - expected[2 * i + k].get<double>()));
+    }
+  EXPECT_LT(worst, 2e-7);  // the JSON's 7 decimals, and float32 over a few km: well under 0.1 m
+  // From the result cache in the same format; JSON where JSON is preferred.
+  const auto again = binary_post();
+  EXPECT_EQ(again.header("x-result-cache"), "hit");
+  EXPECT_EQ(again.header("content-type"), "application/octet-stream");
+  EXPECT_EQ(again.body, r.body);
+  const auto prefer_json = http_request(live->port(), "POST", "/api/v1/deform/focus",
+                                        {{"Content-Type", "application/json"},
+                                         {"Accept", "application/octet-stream;q=0.5, application/json"}},
+                                        body.dump());
+  EXPECT_EQ(prefer_json.status, 200);
+  EXPECT_EQ(prefer_json.header("content-type"), "application/json");
+  // Only positions come as binary.
+  auto geojson = body;
+  geojson["output"]["roads"] = "geojson";
+  const auto refused = http_request(live->port(), "POST", "/api/v1/deform/focus",
+                                    {{"Content-Type", "application/json"}, {"Accept", "application/octet-stream"}},
+                                    geojson.dump());
+  EXPECT_EQ(refused.status, 406);
+  EXPECT_EQ(nlohmann::json::parse(refused.body)["error"]["field"], "output.roads");
 }
 
 TEST_F(DeformApi, EveryMethodAndSolverAnswers) {

@@ -51,7 +51,7 @@ TEST(Params, Booleans) {
 TEST(Params, SlugsAndJsonBodies) {
   expect_field([] { require_slug("../etc", "city"); }, "id", 404);
   expect_field([] { require_slug("Vienna", "city"); }, "id", 404);
-  Request req{"POST", "/x", {}, {}, std::string("{}"), std::string("text/plain")};
+  Request req{"POST", "/x", {}, {}, std::string("{}"), std::string("text/plain"), ""};
   expect_field([&] { parse_json_body(req); }, "Content-Type", 415);
   req.content_type = "application/json; charset=utf-8";
   EXPECT_TRUE(parse_json_body(req).is_object());
@@ -66,7 +66,7 @@ TEST(Params, SlugsAndJsonBodies) {
 // parse_json_body: every JSON endpoint answered 500 instead of 400. The first two bodies are the
 // fuzzers' inputs (tests/fuzz/corpus/*/regression-number-overflow*).
 TEST(Params, JsonNumberTooLargeForADoubleIs400) {
-  Request req{"POST", "/x", {}, {}, std::string(), std::string("application/json")};
+  Request req{"POST", "/x", {}, {}, std::string(), std::string("application/json"), ""};
   for (std::string body :
        {std::string(R"({"roals":"grid","grid":1.7976931348623157e309esbbbbbbbbbbbbbbbbbbbbbbbbbbbbbdges"},"guides":[)"
                     R"({"vertex":0180,-90]6.366,48.206]},{"point":[16.361,48.2],"target":[16.359,48.199]}],)"
@@ -126,7 +126,7 @@ TEST(Params, TypedJsonReaders) {
 }
 
 TEST(Params, QueryNumbersAndChoices) {
-  Request req{"GET", "/x", {{"w", "0.5"}, {"f", "topology"}, {"bad", "1e999"}}, {}, "", ""};
+  Request req{"GET", "/x", {{"w", "0.5"}, {"f", "topology"}, {"bad", "1e999"}}, {}, "", "", ""};
   EXPECT_EQ(query_number(req, "w", 0, 1, 0.7), 0.5);
   EXPECT_EQ(query_number(req, "missing", 0, 1, 0.7), 0.7);
   expect_field([&] { query_number(req, "bad", 0, 1, 0.7); }, "bad");

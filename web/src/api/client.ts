@@ -85,8 +85,8 @@ function retryDelayMs(response: Response): number | null {
   return Math.min(Math.max(seconds * 1000, 250), MAX_RETRY_WAIT_MS);
 }
 
-/** requestJson, also handing back the answer's headers (X-Result-Cache, say). */
-async function requestWithHeaders<T>(path: string, init: RequestInit): Promise<{ body: T; headers: Headers }> {
+/** The successful answer to a request, retrying quietly where the server asks to come back later. */
+async function fetchOk(path: string, init: RequestInit): Promise<Response> {
   for (let attempt = 0; ; attempt++) {
     let response: Response;
     try {
@@ -95,13 +95,19 @@ async function requestWithHeaders<T>(path: string, init: RequestInit): Promise<{
       if (isAbort(error)) throw error;
       throw new ApiError(0, 'network', 'The tourmap server cannot be reached. Check your connection and try again.');
     }
-    if (response.ok) return { body: (await response.json()) as T, headers: response.headers };
+    if (response.ok) return response;
     // Busy or rate limited: the server says when to come back; try again quietly a few times.
     const delay = retryDelayMs(response);
     if (delay === null || attempt >= MAX_RETRIES) throw await errorFrom(response);
     await response.body?.cancel();
     await wait(Math.min(delay * (attempt + 1), MAX_RETRY_WAIT_MS), init.signal);
   }
+}
+
+/** requestJson, also handing back the answer's headers (X-Result-Cache, say). */
+async function requestWithHeaders<T>(path: string, init: RequestInit): Promise<{ body: T; headers: Headers }> {
+  const response = await fetchOk(path, init);
+  return { body: (await response.json()) as T, headers: response.headers };
 }
 
 function getJson<T>(path: string, signal?: AbortSignal): Promise<T> {
@@ -152,14 +158,52 @@ export function fetchRoadTopology(id: string, signal?: AbortSignal): Promise<Roa
   return getJson<RoadTopology>(`/roads/${segment(id)}?format=topology`, signal);
 }
 
-/** POST /api/v1/deform/{kind}. */
-export function postDeform(kind: DeformKind, body: DeformBody, signal?: AbortSignal): Promise<DeformResponse> {
-  return requestJson<DeformResponse>(`/deform/${kind}`, {
+/** The binary deform answer's first bytes (api/positions_binary.hpp). */
+const POSITIONS_MAGIC = 'TMDP';
+
+/**
+ * The binary answer to a deform request: the JSON fields, then the positions as float32
+ * offsets from a float64 origin (openapi.yaml, DeformResult). Copied into a Float64Array of
+ * [lon, lat, ...] without parsing text.
+ */
+export function decodeDeformBinary(buffer: ArrayBuffer): DeformResponse {
+  const view = new DataView(buffer);
+  const bad = (why: string) => new ApiError(0, 'bad_answer', `The server's binary answer is malformed: ${why}.`);
+  if (buffer.byteLength < 32) throw bad('too short');
+  const magic = String.fromCharCode(view.getUint8(0), view.getUint8(1), view.getUint8(2), view.getUint8(3));
+  if (magic !== POSITIONS_MAGIC) throw bad('not a positions answer');
+  if (view.getUint32(4, true) !== 1) throw bad('an unknown version');
+  const jsonBytes = view.getUint32(8, true);
+  const count = view.getUint32(12, true);
+  const lon0 = view.getFloat64(16, true);
+  const lat0 = view.getFloat64(24, true);
+  const start = Math.ceil((32 + jsonBytes) / 4) * 4;
+  if (buffer.byteLength !== start + 8 * count) throw bad('its length does not match its header');
+  const result = JSON.parse(new TextDecoder().decode(new Uint8Array(buffer, 32, jsonBytes))) as DeformResponse;
+  const offsets = new Float32Array(buffer, start, 2 * count);
+  const positions = new Float64Array(2 * count);
+  for (let i = 0; i < 2 * count; i += 2) {
+    positions[i] = lon0 + offsets[i]!;
+    positions[i + 1] = lat0 + offsets[i + 1]!;
+  }
+  result.positions = positions;
+  return result;
+}
+
+/**
+ * POST /api/v1/deform/{kind}. Positions come as binary (a 56,000-node network's answer is
+ * copied, not parsed); a server that answers JSON anyway is read as JSON.
+ */
+export async function postDeform(kind: DeformKind, body: DeformBody, signal?: AbortSignal): Promise<DeformResponse> {
+  const binary = body.output.roads === 'positions';
+  const response = await fetchOk(`/deform/${kind}`, {
     method: 'POST',
     signal,
-    headers: { 'Content-Type': 'application/json' },
+    headers: { 'Content-Type': 'application/json', ...(binary ? { Accept: 'application/octet-stream' } : {}) },
     body: JSON.stringify(body),
   });
+  if (response.headers.get('Content-Type')?.startsWith('application/octet-stream')) return decodeDeformBinary(await response.arrayBuffer());
+  return (await response.json()) as DeformResponse;
 }
 
 /** The query string of a layout's parameters, in a fixed order (the same layout for /layout and /clusters). */

@@ -239,7 +239,8 @@ export interface DeformStats {
 export interface DeformResponse {
   app: string;
   roads_id: string;
-  positions?: number[];
+  /** [lon, lat, ...] per node: parsed from JSON, or decoded from the binary answer. */
+  positions?: ArrayLike<number>;
   grid: DeformGrid | null;
   guides?: { vertex: number; from: LonLat; target: LonLat; to: LonLat }[];
   stats: DeformStats;
