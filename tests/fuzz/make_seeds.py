@@ -450,6 +450,10 @@ def main():
     put("handlers", "deform_focus.txt", req("POST", "/api/v1/deform/focus", compact({
         "roads": "grid", "grid": {"kind": "adaptive", "base": 6, "depth": 2},
         "regions": [{"center": [16.365, 48.205], "radius_m": 250, "scale": 3}]})))
+    put("handlers", "deform_focus_binary.txt", req("POST", "/api/v1/deform/focus", compact({
+        "roads": "grid", "regions": [{"center": [16.365, 48.205], "radius_m": 250, "scale": 3}],
+        "output": {"roads": "positions", "grid": False}}),
+        extra="Accept: application/json;q=0.5, application/octet-stream\n"))
     put("handlers", "deform_mental.txt", req("POST", "/api/v1/deform/mental", compact({
         "roads": roads, "grid": {"kind": "edges"}, "guides": [{"vertex": 4, "target": [16.366, 48.206]}]})))
     put("handlers", "deform_destination.txt", req("POST", "/api/v1/deform/destination", compact({

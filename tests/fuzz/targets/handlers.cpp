@@ -7,8 +7,8 @@
 //
 // Behind the handlers: support/server_world.hpp.
 //
-// Input: "METHOD TARGET\n", then header lines ("Content-Type: ...", "Accept-Encoding: ...",
-// "If-None-Match: ..."), an empty line, and the body.
+// Input: "METHOD TARGET\n", then header lines ("Content-Type: ...", "Accept: ...",
+// "Accept-Encoding: ...", "If-None-Match: ..."), an empty line, and the body.
 // Clean outcome: any response. A handler exception other than api::ApiError (a 500 in the
 // server) is a finding: it escapes the harness.
 
@@ -63,7 +63,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   server::RequestFacts facts;
   facts.method = server::http::string_to_verb(method);
   if (facts.method == server::http::verb::unknown) return 0;  // Beast refuses these before us
-  std::string content_type;
+  std::string content_type, accept;
   while (!in.empty()) {
     eol = in.find('\n');
     std::string_view h = in.substr(0, eol);
@@ -75,6 +75,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     auto value = h.substr(colon + 1);
     while (!value.empty() && value.front() == ' ') value.remove_prefix(1);
     if (boost::beast::iequals(name, "content-type")) content_type = value;
+    else if (boost::beast::iequals(name, "accept")) accept = value;
     else if (boost::beast::iequals(name, "accept-encoding")) facts.accept_encoding = value;
     else if (boost::beast::iequals(name, "if-none-match")) facts.if_none_match = value;
   }
@@ -87,6 +88,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   req.query = std::move(target->query);
   req.body.assign(in);
   req.content_type = content_type;
+  req.accept = accept;
 
   api::Response r;
   auto match = w.state.router.match(req);

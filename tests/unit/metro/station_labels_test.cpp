@@ -3,7 +3,6 @@
 #include "geo/projection.hpp"
 #include "load/metro_load.hpp"
 #include "metro/city_input.hpp"
-#include "metro/city_layout.hpp"
 #include "test_data.hpp"
 
 #include <gtest/gtest.h>
@@ -299,19 +298,20 @@ TEST(StationLabels, SymbolsGrowWithTheZoomWithinBounds) {
 }
 
 TEST(StationLabels, LondonsCentreIsNamedByMovingSeveralNamesAtOnce) {
-  // London's fast layout at 75 px (symbols 12 px across): the one-step repair leaves ten names
-  // out in the centre; placing each one left out again together with the names around it (an
-  // exact search) names all but a few, still without overlaps.
+  // London drawn as it lies (straight edges between the stations' projected places: no layout
+  // step, so nothing depends on a solver's time budget) at 75 px per mean edge: the one-step
+  // repair leaves names out in the crowded centre; placing each one left out again together
+  // with the names around it (an exact search) names more, still without overlaps.
   const auto net = load::load_metro_station_csvs(test::data_file("metro/london.stations.csv"),
                                                  test::data_file("metro/london.lines.csv"),
                                                  test::data_file("metro/london.connections.csv"));
   const auto in = make_city_metro_input(net, {}, geo::projection_for(model::bbox_of(net)));
-  CityLayoutParams params;
-  params.solver = LayoutSolver::fast;
-  const auto city = layout_city(in, {}, params);
+  Layout geographic;
+  geographic.pos = in.graph.pos;
+  for (const auto& [a, b] : in.graph.edges) geographic.paths.push_back({in.graph.pos[a], in.graph.pos[b]});
   StationLabelInput names;
   names.names = in.names;
-  names.priority = city.node_worth;
+  names.priority.assign(in.names.size(), 0);
   for (const auto& lines : in.graph.edge_lines) {
     auto distinct = lines;
     std::sort(distinct.begin(), distinct.end());
@@ -319,17 +319,17 @@ TEST(StationLabels, LondonsCentreIsNamedByMovingSeveralNamesAtOnce) {
   }
   LabelStyle one_step;
   one_step.exact_group = 0;
-  const auto before = place_station_labels(in.graph, city.layout, names, {75}, one_step);
-  const auto after = place_station_labels(in.graph, city.layout, names, {75}, LabelStyle{});
+  const auto before = place_station_labels(in.graph, geographic, names, {75}, one_step);
+  const auto after = place_station_labels(in.graph, geographic, names, {75}, LabelStyle{});
   ASSERT_EQ(before.size(), 1u);
   ASSERT_EQ(after.size(), 1u);
-  EXPECT_GE(before[0].unlabelled, 5u);
-  EXPECT_LE(after[0].unlabelled + 5, before[0].unlabelled);
+  // 33 left out with the one-step repair, 22 with the exact one.
+  EXPECT_LE(after[0].unlabelled + 10, before[0].unlabelled) << before[0].unlabelled << " -> " << after[0].unlabelled;
   EXPECT_EQ(after[0].labels.size() + after[0].unlabelled, in.station_count);
   const auto& s = after[0];
   for (std::size_t i = 0; i < s.labels.size(); ++i)
     for (std::size_t j = i + 1; j < s.labels.size(); ++j)
-      EXPECT_FALSE(overlap(layout_box(city.layout, s, s.labels[i]), layout_box(city.layout, s, s.labels[j])))
+      EXPECT_FALSE(overlap(layout_box(geographic, s, s.labels[i]), layout_box(geographic, s, s.labels[j])))
           << in.names[s.labels[i].node] << " / " << in.names[s.labels[j].node];
 }
 
