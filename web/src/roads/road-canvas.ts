@@ -13,6 +13,14 @@ const STYLE: Record<RoadClass, { color: string; width: number }> = {
 const GHOST = { color: 'rgb(214 108 60 / 0.35)', width: 1 };
 const GRID = { color: 'rgb(40 110 190 / 0.45)', width: 0.7, support: 'rgb(40 110 190 / 0.8)' };
 const ROUTE = { color: '#0a7cff', casing: '#fff', width: 5 };
+/**
+ * Road paths leave out vertices closer than this many device pixels to the last one kept (a way
+ * shorter than that is a dot): a 56,000-edge network seen whole has most of its vertices within
+ * a pixel of each other, and rasterizing them is what a drag waits for. Paths are rebuilt for
+ * each zoom level (ZOOM_STEP apart) and each new set of positions.
+ */
+const SIMPLIFY_PX = 0.6;
+const ZOOM_STEP = Math.SQRT2;
 
 export interface CanvasView {
   x: number;
@@ -31,10 +39,15 @@ export class RoadCanvas {
   private graph?: RoadGraph;
   private classPaths = new Map<RoadClass, Path2D>();
   private ghost?: Path2D;
+  /** The zoom levels the road paths and the ghost were simplified for (NaN: none yet). */
+  private pathsLevel = NaN;
+  private ghostLevel = NaN;
   private gridPath?: Path2D;
   private supportPath?: Path2D;
   private routePath?: Path2D;
   private positions?: Float64Array;
+  /** The undeformed nodes (frame coordinates), drawn as the ghost of the original map. */
+  private original?: Float64Array;
   private route: number[] = [];
   private showOriginalRoads = false;
   private showGridLines = false;
@@ -76,7 +89,8 @@ export class RoadCanvas {
   /** A new network: `original` holds its undeformed nodes in frame coordinates. */
   setNetwork(graph: RoadGraph, original: Float64Array): void {
     this.graph = graph;
-    this.ghost = this.buildPath(ROAD_CLASSES, original);
+    this.original = original;
+    this.ghostLevel = NaN;
     this.gridPath = this.supportPath = undefined;
     this.route = [];
     this.setPositions(original);
@@ -84,8 +98,9 @@ export class RoadCanvas {
 
   clear(): void {
     this.graph = undefined;
-    this.positions = undefined;
+    this.positions = this.original = undefined;
     this.classPaths.clear();
+    this.pathsLevel = this.ghostLevel = NaN;
     this.ghost = this.gridPath = this.supportPath = this.routePath = undefined;
     this.route = [];
     this.dirty = true;
@@ -94,7 +109,7 @@ export class RoadCanvas {
   /** The nodes' drawn positions (frame coordinates, x, y per node). */
   setPositions(positions: Float64Array): void {
     this.positions = positions;
-    this.classPaths = new Map(ROAD_CLASSES.map((roadClass) => [roadClass, this.buildPath([roadClass], positions)]));
+    this.pathsLevel = NaN;  // built at the next draw, for its zoom
     this.routePath = this.buildRoute();
     this.dirty = true;
   }
@@ -162,6 +177,17 @@ export class RoadCanvas {
     ctx.clearRect(0, 0, width, height);
     if (!this.graph) return;
     const k = view.k * ratio;
+    // Road paths simplified for this zoom level (device pixels per frame unit, in ZOOM_STEPs).
+    const level = Math.floor(Math.log(k) / Math.log(ZOOM_STEP));
+    if (level !== this.pathsLevel && this.positions) {
+      const tolerance = SIMPLIFY_PX / ZOOM_STEP ** level;
+      this.classPaths = new Map(ROAD_CLASSES.map((roadClass) => [roadClass, this.buildPath([roadClass], this.positions!, tolerance)]));
+      this.pathsLevel = level;
+    }
+    if (this.showOriginal && this.original && level !== this.ghostLevel) {
+      this.ghost = this.buildPath(ROAD_CLASSES, this.original, SIMPLIFY_PX / ZOOM_STEP ** level);
+      this.ghostLevel = level;
+    }
     ctx.setTransform(k, 0, 0, k, view.x * ratio, view.y * ratio);
     // Butt caps and bevel joins rasterize faster than round ones and look alike at these widths.
     ctx.lineCap = 'butt';
@@ -189,12 +215,28 @@ export class RoadCanvas {
     this.lastDrawMs = performance.now() - started;
   }
 
-  private buildPath(classes: readonly RoadClass[], xy: Float64Array): Path2D {
+  /** The ways of `classes` at positions `xy`, leaving out vertices within `tolerance` (frame units) of the last kept. */
+  private buildPath(classes: readonly RoadClass[], xy: Float64Array, tolerance: number): Path2D {
     const path = new Path2D();
+    const t2 = tolerance * tolerance;
     for (const roadClass of classes) {
       for (const nodes of this.graph!.waysByClass.get(roadClass)!) {
-        path.moveTo(xy[2 * nodes[0]!]!, xy[2 * nodes[0]! + 1]!);
-        for (let i = 1; i < nodes.length; i++) path.lineTo(xy[2 * nodes[i]!]!, xy[2 * nodes[i]! + 1]!);
+        let lastX = xy[2 * nodes[0]!]!;
+        let lastY = xy[2 * nodes[0]! + 1]!;
+        path.moveTo(lastX, lastY);
+        let drawn = false;
+        for (let i = 1; i < nodes.length; i++) {
+          const x = xy[2 * nodes[i]!]!;
+          const y = xy[2 * nodes[i]! + 1]!;
+          const end = i === nodes.length - 1;
+          const dx = x - lastX;
+          const dy = y - lastY;
+          if (dx * dx + dy * dy < t2 && !(end && !drawn)) continue;
+          path.lineTo(x, y);
+          lastX = x;
+          lastY = y;
+          drawn = true;
+        }
       }
     }
     return path;
