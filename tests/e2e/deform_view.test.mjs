@@ -60,8 +60,11 @@ async function run(state) {
 
   // Every deformation answer comes as binary positions (api/positions_binary.hpp).
   const answerTypes = [];
+  const mapPointCounts = [];
   page.on('response', (response) => {
-    if (response.url().includes('/api/v1/deform/')) answerTypes.push(response.headers()['content-type'] ?? '');
+    if (!response.url().includes('/api/v1/deform/')) return;
+    answerTypes.push(response.headers()['content-type'] ?? '');
+    mapPointCounts.push(JSON.parse(response.request().postData() ?? '{}').map_points?.length ?? 0);
   });
 
   // A click in the middle of the map adds a focus region; the server's answer is drawn.
@@ -71,6 +74,14 @@ async function run(state) {
   check(focused.hash !== undeformed.hash, 'the roads drawn did not change after adding a focus region');
   check((await page.locator('[data-testid=region-list] li').count()) === 1, 'the panel does not list the focus region');
   state.summary.push('a focus region deforms the map');
+  // The region's outline is where the server's grid put the circle: its centre and 72 rim
+  // points ride along as map_points. The handle is drawn where the user clicked: the focus pushes
+  // its own centre aside (Monaco: 23 px), so the client moves the centre until it lands there.
+  check(mapPointCounts.length > 0 && mapPointCounts.every((n) => n === 73), `map_points per request: ${mapPointCounts.join(', ')}`);
+  const placed = await page.locator('.focus-handle').first().boundingBox();
+  const offset = Math.hypot(placed.x + placed.width / 2 - (map.x + map.width / 2), placed.y + placed.height / 2 - (map.y + map.height / 2));
+  check(offset <= 4, `the region's handle is drawn ${offset.toFixed(1)} px from the click`);
+  state.summary.push(`handle ${offset.toFixed(1)} px from the click`);
 
   // Drag the region's centre handle: the roads must follow.
   const handle = await page.locator('.focus-handle').first().boundingBox();

@@ -192,11 +192,13 @@ export interface DeformCommon {
   solver: 'cholesky' | 'cg';
   relax: boolean;
   output: { roads: 'positions' | 'geojson' | 'none'; grid: boolean };
+  /** Points of the original map to answer where the deformation put them (mapped_points). */
+  map_points?: LonLat[];
 }
 
 export type DeformBody = DeformCommon &
   (
-    | { regions: FocusRegion[] }
+    | { regions: FocusRegion[]; map_points?: LonLat[] }
     | { guides: Guide[] }
     | { route: number[]; sketch: LonLat[]; simplify_m: number }
   );
@@ -243,6 +245,8 @@ export interface DeformResponse {
   positions?: ArrayLike<number>;
   grid: DeformGrid | null;
   guides?: { vertex: number; from: LonLat; target: LonLat; to: LonLat }[];
+  /** Where the request's map_points went, in their order. */
+  mapped_points?: LonLat[];
   stats: DeformStats;
   attribution: string[];
 }

@@ -2,6 +2,7 @@ import type { DeformResponse, FocusRegion, LonLat } from '../api/types';
 import { distanceMeters } from '../map/distance';
 import { svg } from '../map/svg';
 import { h } from '../ui/dom';
+import type { Frame } from '../map/projection';
 import { clamp, metersPerUnit, roundLonLat } from './geometry';
 import { circle, label, polyline, polylineDistance } from './overlay';
 import type { DeformTool, ScreenPoint, ToolContext, ToolRequest } from './tool';
@@ -14,6 +15,10 @@ const RING_STEPS = 72;
 /** Hit distances in pixels: the centre handle, and the rim on either side of the line. */
 const HANDLE_HIT_PX = 11;
 const RIM_HIT_PX = 7;
+/** A region's centre is drawn within this many pixels of where the user put it, after at most MAX_CORRECTIONS more requests. */
+const CORRECTED_PX = 2;
+const MAX_CORRECTIONS = 6;
+const CORRECTION_STEP = 0.7;
 /** Radius sliders are logarithmic: this many steps from MIN_RADIUS_M to the network's size. */
 const RADIUS_STEPS = 1000;
 
@@ -23,13 +28,23 @@ interface Region {
   center: LonLat;
   radiusM: number;
   scale: number;
-  /** This region as it is in the answer drawn now (none before its first answer). */
-  shown?: { center: LonLat; radiusM: number };
+  /**
+   * This region as it is in the answer drawn now (none before its first answer), and where the
+   * server's grid put its centre and rim (frame coordinates): the true image of the circle.
+   */
+  shown?: { center: LonLat; radiusM: number; handle?: [number, number]; ring?: [number, number][] };
   /**
    * Where the centre handle is held on the deformed map (frame coordinates): under the pointer
    * while dragged, and there until the answer for the region's latest state is drawn.
    */
   pin?: [number, number];
+  /**
+   * Where the user put the centre (frame coordinates of the deformed map: the click, or the
+   * handle's release): the region's centre on the original map is corrected until the grid puts
+   * it there, as the focus pushes its own centre aside (Monaco: 23 px at Z = 3).
+   */
+  target?: [number, number];
+  corrections?: number;
 }
 
 type Drag =
@@ -167,23 +182,62 @@ export class FocusTool implements DeformTool {
       scale: region.scale,
     }));
     this.sentIds.set(regions, this.regions.map((region) => region.id));
-    return { regions };
+    // Each region's centre and rim, for the server to say where its grid put them.
+    const frame = this.context?.frame;
+    const mapPoints = frame ? this.regions.flatMap((region) => circlePoints(frame, region.center, region.radiusM)) : undefined;
+    return mapPoints ? { regions, map_points: mapPoints } : { regions };
   }
 
-  applied(_result: DeformResponse, request: ToolRequest): void {
+  applied(result: DeformResponse, request: ToolRequest): void {
     if (!('regions' in request)) return;
     const ids = this.sentIds.get(request.regions) ?? [];
     const byId = new Map(this.regions.map((region) => [region.id, region]));
     for (const region of this.regions) region.shown = undefined;
+    const mapped = 'map_points' in request && request.map_points && result.mapped_points?.length === request.map_points.length ? result.mapped_points : undefined;
+    const frame = this.context?.frame;
     request.regions.forEach((sent, i) => {
       const region = byId.get(ids[i] ?? -1);
-      if (region && 'center' in sent) region.shown = { center: sent.center, radiusM: sent.radius_m };
+      if (!region || !('center' in sent)) return;
+      region.shown = { center: sent.center, radiusM: sent.radius_m };
+      if (mapped && frame) {
+        const points = mapped.slice(i * (RING_STEPS + 1), (i + 1) * (RING_STEPS + 1)).map((p) => frame.project(p));
+        region.shown.handle = points[0];
+        region.shown.ring = points.slice(1);
+      }
     });
     this.shapes.clear();
+    let corrected = false;
     for (const region of this.regions) {
       const settled = region.shown && sameCenter(region.shown.center, region.center) && Math.abs(region.shown.radiusM - region.radiusM) < 0.05;
-      if (settled && this.drag?.region !== region) region.pin = undefined;
+      if (!settled || this.drag?.region === region) continue;
+      if (region.target && region.shown?.handle && frame && this.context) corrected = this.correct(region, region.shown.handle) || corrected;
+      if (!region.target) region.pin = undefined;
     }
+    if (corrected) this.changed();
+  }
+
+  /**
+   * Moves the region's centre on the original map towards where the user wants it drawn: by
+   * CORRECTION_STEP of the distance between that and where the grid put it (the whole step
+   * overshoots: which roads fall in the region changes as it moves), up to MAX_CORRECTIONS
+   * times, until they are within CORRECTED_PX (Monaco: 23 px, then 12, 4, 2, 1 px). True when
+   * it moved.
+   */
+  private correct(region: Region, handle: [number, number]): boolean {
+    const context = this.context!;
+    const target = region.target!;
+    const [tx, ty] = context.map.toScreen(...target);
+    const [hx, hy] = context.map.toScreen(...handle);
+    if (Math.hypot(tx - hx, ty - hy) <= CORRECTED_PX || (region.corrections ?? 0) >= MAX_CORRECTIONS) {
+      region.target = region.corrections = undefined;
+      return false;
+    }
+    region.corrections = (region.corrections ?? 0) + 1;
+    const [cx, cy] = context.frame.project(region.center);
+    const step = CORRECTION_STEP;
+    region.center = roundLonLat(context.frame.unproject(cx + step * (target[0] - handle[0]), cy + step * (target[1] - handle[1])));
+    region.pin = target;  // drawn where the user put it meanwhile
+    return true;
   }
 
   pointerDown(point: ScreenPoint): boolean {
@@ -223,8 +277,14 @@ export class FocusTool implements DeformTool {
   }
 
   pointerUp(): void {
-    if (!this.drag) return;
+    const drag = this.drag;
+    if (!drag) return;
     this.drag = undefined;
+    // A moved centre stays where it was let go.
+    if (drag.kind === 'move' && drag.region.pin) {
+      drag.region.target = drag.region.pin;
+      drag.region.corrections = 0;
+    }
     this.context?.dragging(false);
   }
 
@@ -244,6 +304,7 @@ export class FocusTool implements DeformTool {
       center: roundLonLat(frame.unproject(x, y)),
       radiusM: this.clampRadius(radiusUnits * metersPerUnit(frame, x, y)),
       scale: DEFAULT_SCALE,
+      target: map.toFrame(...point),
     };
     this.regions.push(region);
     this.selected = region;
@@ -379,19 +440,29 @@ export class FocusTool implements DeformTool {
 
   private computeGeometry(region: Region): { handle: [number, number]; ring: [number, number][] } {
     const context = this.context!;
-    const displacement = context.displacement();
     const base = region.shown ?? { center: region.center, radiusM: region.radiusM };
-    const [cx, cy] = context.frame.project(base.center);
-    const r = base.radiusM / metersPerUnit(context.frame, cx, cy);
-    const handle0 = displacement.forward(cx, cy);
+    let handle0: [number, number];
+    let ring0: [number, number][];
+    if (base.handle && base.ring) {
+      // Where the server's grid put the circle (the map drawn now is that answer).
+      handle0 = base.handle;
+      ring0 = base.ring;
+    } else {
+      // Before an answer: the circle carried by the displacement between drawn maps.
+      const displacement = context.displacement();
+      const [cx, cy] = context.frame.project(base.center);
+      const r = base.radiusM / metersPerUnit(context.frame, cx, cy);
+      handle0 = displacement.forward(cx, cy);
+      ring0 = [];
+      for (let i = 0; i < RING_STEPS; i++) {
+        const angle = (2 * Math.PI * i) / RING_STEPS;
+        ring0.push(displacement.forward(cx + r * Math.cos(angle), cy + r * Math.sin(angle)));
+      }
+    }
+    // A held handle moves the shape, a new radius scales it, until the answer for them comes.
     const handle = region.pin ?? handle0;
     const grow = region.radiusM / base.radiusM;
-    const ring: [number, number][] = [];
-    for (let i = 0; i < RING_STEPS; i++) {
-      const angle = (2 * Math.PI * i) / RING_STEPS;
-      const [x, y] = displacement.forward(cx + r * Math.cos(angle), cy + r * Math.sin(angle));
-      ring.push([handle[0] + (x - handle0[0]) * grow, handle[1] + (y - handle0[1]) * grow]);
-    }
+    const ring = ring0.map(([x, y]): [number, number] => [handle[0] + (x - handle0[0]) * grow, handle[1] + (y - handle0[1]) * grow]);
     return { handle, ring };
   }
 
@@ -411,6 +482,18 @@ export class FocusTool implements DeformTool {
     }
     return undefined;
   }
+}
+
+/** A circle on the original map: its centre, then RING_STEPS points of its rim ([lon, lat]). */
+function circlePoints(frame: Frame, center: LonLat, radiusM: number): LonLat[] {
+  const [cx, cy] = frame.project(center);
+  const r = radiusM / metersPerUnit(frame, cx, cy);
+  const points: LonLat[] = [center];
+  for (let i = 0; i < RING_STEPS; i++) {
+    const angle = (2 * Math.PI * i) / RING_STEPS;
+    points.push(roundLonLat(frame.unproject(cx + r * Math.cos(angle), cy + r * Math.sin(angle))));
+  }
+  return points;
 }
 
 function sameCenter(a: LonLat, b: LonLat): boolean {

@@ -8,7 +8,7 @@ export type ScreenPoint = [x: number, y: number];
 
 /** The part of a deformation request a tool adds to the shared options. */
 export type ToolRequest =
-  | { regions: FocusRegion[] }
+  | { regions: FocusRegion[]; map_points?: LonLat[] }
   | { guides: Guide[] }
   | { route: number[]; sketch: LonLat[]; simplify_m: number };
 
