@@ -7,7 +7,8 @@ import { roundLonLat } from './geometry';
 import { circle, label, polyline } from './overlay';
 import type { DeformTool, ScreenPoint, ToolContext, ToolRequest } from './tool';
 
-const SNAP_PX = 24;
+/** A click within this many pixels of a road picks that road's nearer vertex, at any zoom. */
+const SNAP_PX = 20;
 const DEFAULT_SIMPLIFY_M = 10;
 /** The API takes at most this many sketch points. */
 const MAX_SKETCH_POINTS = 10000;
@@ -180,7 +181,7 @@ export class DestinationTool implements DeformTool {
 
   private nodeAt(point: ScreenPoint): number {
     const context = this.context!;
-    return context.displacement().nearestDrawn(...context.map.toFrame(...point), SNAP_PX / context.map.scale);
+    return context.displacement().nearestRoadVertex(...context.map.toFrame(...point), SNAP_PX / context.map.scale);
   }
 
   private clearRoute(): void {

@@ -1,4 +1,5 @@
 import { PointIndex } from '../roads/point-index';
+import { SegmentIndex } from '../roads/segment-index';
 
 const NEIGHBOURS = 8;
 
@@ -9,11 +10,14 @@ const NEIGHBOURS = 8;
  */
 export class Displacement {
   private deformedIndex?: PointIndex;
+  private roads?: SegmentIndex;
 
   constructor(
     private readonly original: Float64Array,
     private readonly originalIndex: PointIndex,
     readonly deformed: Float64Array,
+    /** The road edges as node pairs (RoadGraph.edges). */
+    private readonly edges: Uint32Array,
   ) {}
 
   get identity(): boolean {
@@ -40,6 +44,19 @@ export class Displacement {
     if (this.identity) return this.originalIndex.nearest(x, y, maxDistance);
     this.deformedIndex ??= new PointIndex(this.deformed);
     return this.deformedIndex.nearest(x, y, maxDistance);
+  }
+
+  /**
+   * The road vertex at the end nearer to the point of the road drawn nearest to (x, y), within
+   * maxDistance frame units of the road; -1 if no road is that close.
+   */
+  nearestRoadVertex(x: number, y: number, maxDistance: number): number {
+    this.roads ??= new SegmentIndex(this.deformed, this.edges);
+    const hit = this.roads.nearest(x, y, maxDistance);
+    if (!hit) return -1;
+    const [a, b] = this.roads.nodes(hit.edge);
+    const d = (node: number) => Math.hypot(this.deformed[2 * node]! - hit.x, this.deformed[2 * node + 1]! - hit.y);
+    return d(a) <= d(b) ? a : b;
   }
 
   private shift(index: PointIndex, x: number, y: number): [number, number] {

@@ -34,6 +34,8 @@ export class RoadGraph {
   readonly offsets: Uint32Array;
   readonly targets: Uint32Array;
   readonly lengths: Float64Array;
+  /** Every road edge once, as node pairs (a, b, a, b, ...). */
+  readonly edges: Uint32Array;
   private indexById?: Map<number, number>;
 
   constructor(topology: RoadTopology) {
@@ -64,6 +66,7 @@ export class RoadGraph {
       this.targets[slot] = b;
       this.lengths[slot] = length;
     };
+    const pairs: number[] = [];
     for (const way of topology.ways) {
       for (let i = 1; i < way.nodes.length; i++) {
         const a = way.nodes[i - 1]!;
@@ -72,8 +75,10 @@ export class RoadGraph {
         const length = this.distance(a, b);
         link(a, b, length);
         link(b, a, length);
+        pairs.push(a, b);
       }
     }
+    this.edges = Uint32Array.from(pairs);
   }
 
   /** The node index of an OSM node id. */

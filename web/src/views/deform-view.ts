@@ -247,7 +247,7 @@ export class DeformView implements View {
         dragging: (active) => this.dragging(active),
       };
       this.network = { summary, graph, frame, original, index, context };
-      this.displacement = new Displacement(original, index, original);
+      this.displacement = new Displacement(original, index, original, graph.edges);
       this.canvas.setNetwork(graph, original);
       for (const tool of Object.values(this.tools)) tool.reset(context);
       this.map.setFrame(frame);
@@ -353,7 +353,7 @@ export class DeformView implements View {
   private draw(shown: Shown | null): void {
     const network = this.network!;
     const positions = shown?.positions ?? network.original;
-    this.displacement = new Displacement(network.original, network.index, positions);
+    this.displacement = new Displacement(network.original, network.index, positions, network.graph.edges);
     this.canvas.setPositions(positions);
     this.canvas.setGrid(shown && this.options.value.showGrid ? shown.grid : null, network.frame);
     this.canvas.element.dataset.positionsHash = shown?.hash ?? positionsHash(network.graph.lonLat);
