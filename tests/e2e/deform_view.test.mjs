@@ -101,7 +101,12 @@ async function run(state) {
     `deformations came as ${[...new Set(answerTypes)].join(', ') || 'nothing'}, not as binary positions`);
   state.summary.push(`${answerTypes.length} answers as binary positions`);
 
+  // The numbers are folded away until opened; the grid and solver sit behind "Advanced".
   const stats = page.locator('[data-testid=deform-stats]');
+  check(!(await stats.evaluate((element) => element.open)), 'the numbers box is open before it was asked for');
+  check(!(await page.locator('[data-testid=deform-advanced]').evaluate((element) => element.open)), 'the advanced options are open at first');
+  check(await page.locator('[data-testid=grid-kind]').isHidden(), 'the grid choice shows without opening Advanced');
+  await stats.locator('summary').click();
   const residue = Number(await stats.getAttribute('data-residue'));
   const statsText = await stats.innerText();
   check(Number.isFinite(residue) && residue > 0, `the stats box holds no residue (data-residue "${residue}")`);

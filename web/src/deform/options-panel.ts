@@ -62,17 +62,23 @@ export class OptionsPanel {
       field('Split above c', this.c, 'Split a cell holding more than c road vertices'),
     );
     this.uniformFields = h('div', { class: 'option-group' }, field('Cells n', this.n, 'Cells along the longer side'));
+    // What a traveller uses stays in view; how the map is computed goes behind "Advanced"
+    // (closed until opened), for those who want to compare grids and solvers.
     this.element = h(
-      'details',
-      { class: 'options', open: true },
-      h('summary', {}, 'Options'),
-      h('label', { class: 'inline-field', for: 'grid-kind' }, 'Grid', this.kind),
-      this.adaptiveFields,
-      this.uniformFields,
-      h('label', { class: 'inline-field', for: 'solver' }, 'Solver', this.solver),
-      h('label', { class: 'check' }, this.relax, 'Relax fold-overs after solving'),
-      h('label', { class: 'check' }, this.showGrid, 'Show the deformed grid'),
-      h('label', { class: 'check' }, this.showOriginal, 'Show the original roads'),
+      'div',
+      { class: 'options' },
+      h('label', { class: 'check' }, this.showOriginal, 'Show the roads as they really lie'),
+      h(
+        'details',
+        { class: 'advanced', 'data-testid': 'deform-advanced' },
+        h('summary', {}, 'Advanced: grid and solver'),
+        h('label', { class: 'inline-field', for: 'grid-kind' }, 'Grid', this.kind),
+        this.adaptiveFields,
+        this.uniformFields,
+        h('label', { class: 'inline-field', for: 'solver' }, 'Solver', this.solver),
+        h('label', { class: 'check' }, this.relax, 'Relax fold-overs after solving'),
+        h('label', { class: 'check' }, this.showGrid, 'Show the deformed grid'),
+      ),
     );
     for (const input of [this.kind, this.base, this.depth, this.c, this.n, this.solver, this.relax, this.showGrid, this.showOriginal]) {
       input.addEventListener('change', () => {

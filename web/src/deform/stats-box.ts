@@ -25,11 +25,12 @@ export class StatsBox {
     this.table = h('dl', { class: 'stats-table' });
     this.drag = h('p', { class: 'stats-drag', 'data-testid': 'drag-meter' });
     this.busy = h('span', { class: 'stats-busy', hidden: true }, 'computing…');
-    // A <details>: the box can be folded away when it covers the part of the map you look at.
+    // A <details>, folded until opened: the numbers are for those who compare methods, and the
+    // box would cover part of the map.
     this.element = h(
       'details',
-      { class: 'stats', open: true, 'data-testid': 'deform-stats', 'aria-label': 'Deformation statistics' },
-      h('summary', {}, 'Solver', this.busy),
+      { class: 'stats', 'data-testid': 'deform-stats', 'aria-label': 'Deformation statistics' },
+      h('summary', {}, 'Numbers', this.busy),
       this.table,
       this.drag,
     );
