@@ -14,12 +14,14 @@ std::shared_ptr<const RoadNetworkEntry> read_road_entry(store::Db& db, const std
   for (int attempt = 0; attempt < 3; ++attempt) {
     auto before = store::find_road_network(db, id);
     auto net = store::load_road_network(db, id);
+    auto context = store::load_road_context(db, id);
     auto after = store::find_road_network(db, id);
     if (!before || !net || !after) return nullptr;  // deleted meanwhile
     if (before->version != after->version) continue;
     auto entry = std::make_shared<RoadNetworkEntry>();
     entry->info = std::move(*after);
     entry->net = std::move(*net);
+    entry->context = std::move(context);
     return entry;
   }
   throw std::runtime_error("road network '" + id + "' kept changing while it was read");

@@ -9,6 +9,7 @@
 #include "store/db_pool.hpp"
 
 #include "model/city.hpp"
+#include "model/context.hpp"
 #include "model/road.hpp"
 
 #include <map>
@@ -21,6 +22,7 @@ namespace tourmap::api {
 struct RoadNetworkEntry {
   model::RoadNetworkInfo info;
   model::RoadNetwork net;
+  model::ContextLayers context;  // from the same extract (store/context_repo.cpp)
 };
 
 class Catalog {

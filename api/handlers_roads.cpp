@@ -2,6 +2,7 @@
 
 #include "geojson.hpp"
 #include "params.hpp"
+#include "road_context.hpp"
 #include "routes.hpp"
 
 #include "store/repo.hpp"
@@ -35,6 +36,19 @@ void add_road_routes(Router& router, AppContext& ctx) {
       r.body = roads_geojson(*entry, bbox, with_nodes);
     }
     r.cacheable = true;  // no max-age: clients revalidate (cheap 304) and see imports at once
+    return r;
+  });
+
+  // The context layers drawn under the roads (sea, water, parks, land use, buildings, rivers,
+  // railways, place names), imported from the same extract.
+  router.add("GET", "/api/v1/roads/{id}/context", Exec::light, [&ctx](Request& req) {
+    const auto q = parse_context_query(req);
+    const auto& id = req.param("id");
+    require_slug(id, "road network");
+    auto entry = ctx.catalog.road_network(id);
+    if (!entry) throw not_found("id", "road network", id);
+    Response r = json_response(road_context_json(*entry, q));
+    r.cacheable = true;
     return r;
   });
 }

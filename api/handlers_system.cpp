@@ -31,7 +31,8 @@ void add_system_routes(Router& router, AppContext& ctx) {
                                                "/api/v1/cities/{id}/pois", "/api/v1/cities/{id}/pois/query",
                                                "/api/v1/cities/{id}/layout", "/api/v1/cities/{id}/visual-worth",
                                                "/api/v1/cities/{id}/clusters",
-                                               "/api/v1/roads", "/api/v1/roads/{id}", "/api/v1/deform/focus",
+                                               "/api/v1/roads", "/api/v1/roads/{id}", "/api/v1/roads/{id}/context",
+                                               "/api/v1/deform/focus",
                                                "/api/v1/deform/mental", "/api/v1/deform/destination",
                                                "/api/v1/events", "/api/v1/crowd/scenes", "/api/v1/crowd/stream",
                                                "/healthz", "/metrics"}}});

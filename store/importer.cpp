@@ -4,6 +4,7 @@
 #include "load/load_error.hpp"
 #include "load/metro_load.hpp"
 #include "load/name_rules.hpp"
+#include "load/osm_context.hpp"
 #include "load/osm_roads.hpp"
 #include "load/poi_load.hpp"
 #include "geo/projection.hpp"
@@ -203,7 +204,7 @@ ImportResult import_roads(Db& db, const RoadImport& req, const load::ImportLimit
   ImportResult result;
   result.kind = "roads";
   result.target = req.network.id;
-  auto fp = fingerprint_files({req.file});
+  const auto fp = fingerprint_files({req.file}) + "/" + util::hex64(util::fnv1a64(kRoadProcessing));
   if (!req.force && last_fingerprint(db, "roads", req.network.id) == fp && road_network_version(db, req.network.id)) {
     result.skipped = true;
     result.version = road_network_version(db, req.network.id).value_or(0);
@@ -211,13 +212,20 @@ ImportResult import_roads(Db& db, const RoadImport& req, const load::ImportLimit
   }
   load::OsmRoadStats stats;
   auto net = load::load_osm_roads(req.file, &stats, limits);
-  result.rows = net.nodes.size() + net.ways.size() + net.edges.size();
+  load::OsmContextStats context_stats;
+  const auto context = load::load_osm_context(req.file, &context_stats, limits);
+  result.rows = net.nodes.size() + net.ways.size() + net.edges.size() + context.areas.size() + context.lines.size() +
+                context.places.size();
   result.version = save_road_network(db, req.network, net,
                                      {"roads", req.network.id, load::file_name(req.file), fp, result.rows,
-                                      seconds_since(start)});
+                                      seconds_since(start)},
+                                     context);
   result.seconds = seconds_since(start);
   result.summary = std::to_string(net.nodes.size()) + " nodes, " + std::to_string(net.edges.size()) + " edges, " +
-                   std::to_string(net.ways.size()) + " ways (of " + std::to_string(stats.osm_ways) + " OSM ways)";
+                   std::to_string(net.ways.size()) + " ways (of " + std::to_string(stats.osm_ways) +
+                   " OSM ways); context: " + std::to_string(context.areas.size()) + " areas (" +
+                   std::to_string(context_stats.sea_rings) + " sea), " + std::to_string(context.lines.size()) +
+                   " lines, " + std::to_string(context.places.size()) + " places";
   return result;
 }
 

@@ -56,7 +56,13 @@ struct RoadImport {
   std::string file;
   bool force = false;
 };
+// The roads and the context layers of one extract (load/osm_context.hpp), in one transaction.
 ImportResult import_roads(Db& db, const RoadImport& request, const load::ImportLimits& limits = {});
+
+// A road import's source version: the file's fingerprint and the processing at import
+// (kRoadProcessing): a build that reads more of the extract (the context layers came with
+// "roads+context/1") imports it again; the same file twice changes nothing.
+inline constexpr const char* kRoadProcessing = "roads+context/1";
 
 // FNV-1a 64 over the files' bytes, as hex: identifies a source version.
 std::string fingerprint_files(const std::vector<std::string>& files);

@@ -5,6 +5,7 @@
 #include "sqlite.hpp"
 
 #include "model/city.hpp"
+#include "model/context.hpp"
 #include "model/road.hpp"
 
 #include <cstdint>
@@ -52,13 +53,19 @@ struct RoadMeta {
   std::string name;
   std::string attribution;
 };
-std::int64_t save_road_network(Db& db, const RoadMeta& meta, const model::RoadNetwork& net, ImportRecord record);
+// Creates or replaces the road network and its context layers (store/context_repo.cpp).
+std::int64_t save_road_network(Db& db, const RoadMeta& meta, const model::RoadNetwork& net, ImportRecord record,
+                               const model::ContextLayers& context = {});
 std::vector<model::RoadNetworkInfo> list_road_networks(Db& db);
 std::optional<model::RoadNetworkInfo> find_road_network(Db& db, const std::string& id);
 std::optional<std::int64_t> road_network_version(Db& db, const std::string& id);
 std::optional<model::RoadNetwork> load_road_network(Db& db, const std::string& id);
 // Deletes the road network; false when there was none. Recorded like delete_city.
 bool delete_road_network(Db& db, const std::string& id);
+// The network's context layers (empty for a network without any, or unknown); within the
+// caller's transaction when writing (save_road_network calls it).
+void save_road_context(Db& db, const std::string& network_id, const model::ContextLayers& layers);
+model::ContextLayers load_road_context(Db& db, const std::string& network_id);
 
 // --- result cache ---
 struct CachedResult {

@@ -24,7 +24,8 @@ model::RoadNetworkInfo read_info(const Stmt& st) {
 
 }  // namespace
 
-std::int64_t save_road_network(Db& db, const RoadMeta& meta, const model::RoadNetwork& net, ImportRecord record) {
+std::int64_t save_road_network(Db& db, const RoadMeta& meta, const model::RoadNetwork& net, ImportRecord record,
+                               const model::ContextLayers& context) {
   Transaction tx(db);
   record.kind = "roads";
   record.target_id = meta.id;
@@ -62,6 +63,7 @@ std::int64_t save_road_network(Db& db, const RoadMeta& meta, const model::RoadNe
     ins_edge.bind(1, meta.id).bind(2, i).bind(3, static_cast<std::int64_t>(e.way))
         .bind(4, static_cast<std::int64_t>(e.from)).bind(5, static_cast<std::int64_t>(e.to)).run();
   }
+  save_road_context(db, meta.id, context);
   tx.commit();
   return version;
 }

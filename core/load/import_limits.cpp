@@ -18,9 +18,11 @@ void for_each_limit(ImportLimits& l, F&& f) {
   f("max_osm_pbf_blobs", l.max_osm_pbf_blobs, "count");
   f("max_osm_nodes", l.max_osm_nodes, "count");
   f("max_osm_ways", l.max_osm_ways, "count");
+  f("max_osm_relations", l.max_osm_relations, "count");
   f("max_road_nodes", l.max_road_nodes, "count");
   f("max_road_ways", l.max_road_ways, "count");
   f("max_road_edges", l.max_road_edges, "count");
+  f("max_context_points", l.max_context_points, "count");
   f("max_id_bytes", l.max_id_bytes, "bytes");
   f("max_name_bytes", l.max_name_bytes, "bytes");
   f("max_url_bytes", l.max_url_bytes, "bytes");

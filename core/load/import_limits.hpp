@@ -58,12 +58,21 @@ struct ImportLimits {
   // (Liechtenstein); a big city's extract (Berlin) has on the order of 10^7 nodes and 10^6 ways.
   std::size_t max_osm_nodes = 20'000'000;
   std::size_t max_osm_ways = 4'000'000;
+  // Relations read from the file (only the context-layer loader reads them: it keeps the
+  // multipolygons of the kinds it draws, and their member ways, until they are assembled).
+  // Sample data: at most 358 (Liechtenstein); a big city's extract has some 10^5.
+  std::size_t max_osm_relations = 1'000'000;
   // What the road network keeps (stored, then loaded and deformed by reads). Sample data: at
   // most 54,374 nodes, 4,658 ways and 56,000 edges (Liechtenstein); a big city's roads, paths
   // and tracks are on the order of 10^6 nodes.
   std::size_t max_road_nodes = 5'000'000;
   std::size_t max_road_ways = 1'000'000;
   std::size_t max_road_edges = 6'000'000;
+  // Positions the context layers keep (osm_context.hpp: the ring points of areas, the sea's
+  // included, line points, one a place; 16 bytes each), stored and drawn under deformed maps.
+  // Sample data: at most 76,929 (Liechtenstein, 9,000 buildings); a big city's buildings and
+  // land use have on the order of 10^7.
+  std::size_t max_context_points = 20'000'000;
 
   // --- text fields (UTF-8 bytes) ---
   // Ids: POI ids, metro node/station ids, line ids and colours. Sample data: at most 15 bytes;

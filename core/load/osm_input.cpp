@@ -1,11 +1,13 @@
 #include "load/osm_input.hpp"
 
+#include "load/file.hpp"
 #include "load/import_limits.hpp"
 #include "load/load_error.hpp"
 #include "util/stop.hpp"
 
 #include <bzlib.h>
 #include <fcntl.h>
+#include <osmium/osm/tag.hpp>
 #include <unistd.h>
 #include <zlib.h>
 
@@ -309,6 +311,74 @@ PbfBlobs scan_pbf_blobs(std::string_view pbf, std::size_t max_blobs, std::uint64
     blobs.raw_bytes += raw;
   }
   return blobs;
+}
+
+namespace {
+
+// Checks a PBF's blobs before libosmium decodes them (it bounds each blob, not their number).
+std::uint64_t check_pbf(std::string_view pbf, const ImportLimits& limits, const std::string& source) {
+  const auto blobs = scan_pbf_blobs(pbf, limits.max_osm_pbf_blobs, limits.max_osm_decompressed_bytes);
+  check_limit(blobs.count, limits.max_osm_pbf_blobs, "max_osm_pbf_blobs", source, "PBF blobs");
+  check_limit(blobs.raw_bytes, limits.max_osm_decompressed_bytes, "max_osm_decompressed_bytes", source,
+              "bytes of OSM data after decompression (the sum of the PBF blobs' sizes)");
+  return blobs.raw_bytes;
+}
+
+// The libosmium format of the (decompressed) text of an extract.
+std::string plain_format(const osmium::io::File& file, const std::string& source) {
+  switch (file.format()) {
+    case osmium::io::file_format::xml: return "osm";
+    case osmium::io::file_format::opl: return "opl";
+    case osmium::io::file_format::o5m: return "o5m";
+    default: throw LoadError(source, "unsupported OSM format (expected .osm, .osm.gz, .osm.bz2 or .osm.pbf)");
+  }
+}
+
+}  // namespace
+
+OsmInput::OsmInput(const std::string& path, const ImportLimits& limits, const std::string& source) : file_(path) {
+  if (file_.format() == osmium::io::file_format::pbf) {
+    pbf_ = read_file(path);
+    input_bytes_ = check_pbf(pbf_, limits, source);
+    file_ = osmium::io::File(pbf_.data(), pbf_.size(), "pbf");
+  } else if (file_.compression() == osmium::io::file_compression::none ||
+             (file_.compression() == osmium::io::file_compression::gzip && !starts_like_gzip(path))) {
+    // Plain text (zlib's gzread, which libosmium uses, passes a .gz that is not gzip through).
+    input_bytes_ = std::filesystem::file_size(path);
+    check_limit(input_bytes_, limits.max_osm_decompressed_bytes, "max_osm_decompressed_bytes", source,
+                "bytes of OSM data");
+    file_ = osmium::io::File(path, plain_format(file_, source));
+  } else {
+    const auto format = plain_format(file_, source);
+    spool_.emplace();
+    input_bytes_ = decompress_osm(
+        path, file_.compression() == osmium::io::file_compression::gzip ? OsmCompression::gzip : OsmCompression::bzip2,
+        *spool_, limits.max_osm_decompressed_bytes, source);
+    file_ = osmium::io::File(spool_->path(), format);
+  }
+}
+
+const char* tag_value(const osmium::TagList& tags, const char* key) {
+  const char* p = reinterpret_cast<const char*>(tags.data()) + sizeof(osmium::TagList);
+  const char* const end = reinterpret_cast<const char*>(tags.data()) + tags.byte_size();
+  while (p < end) {
+    const auto* key_end = static_cast<const char*>(std::memchr(p, '\0', static_cast<std::size_t>(end - p)));
+    if (!key_end || key_end + 1 >= end) return nullptr;
+    const char* value = key_end + 1;
+    const auto* value_end = static_cast<const char*>(std::memchr(value, '\0', static_cast<std::size_t>(end - value)));
+    if (!value_end) return nullptr;
+    if (std::strcmp(p, key) == 0) return value;
+    p = value_end + 1;
+  }
+  return nullptr;
+}
+
+bool well_formed_tags(const osmium::TagList& tags) {
+  const char* const begin = reinterpret_cast<const char*>(tags.data()) + sizeof(osmium::TagList);
+  const char* const end = reinterpret_cast<const char*>(tags.data()) + tags.byte_size();
+  if (begin == end) return true;
+  if (end < begin || end[-1] != '\0') return false;
+  return std::count(begin, end, '\0') % 2 == 0;
 }
 
 }  // namespace tourmap::load

@@ -13,7 +13,6 @@
 
 #include <cstring>
 #include <filesystem>
-#include <optional>
 #include <unordered_map>
 
 namespace tourmap::load {
@@ -21,26 +20,6 @@ namespace {
 
 using LocationIndex = osmium::index::map::FlexMem<osmium::unsigned_object_id_type, osmium::Location>;
 using LocationHandler = osmium::handler::NodeLocationsForWays<LocationIndex>;
-
-// The value of tag `key`, or nullptr, reading the tag list's bytes (key NUL value NUL ...)
-// strictly within the list. TagList::operator[] walks the list with strchr and trusts its
-// shape, but libosmium's PBF reader copies string-table entries with NUL bytes inside them as
-// they are: the walk then gets out of step and runs past the end of the list (a heap overread
-// on a crafted .osm.pbf). Here such a list simply ends at its last complete pair.
-const char* tag_value(const osmium::TagList& tags, const char* key) {
-  const char* p = reinterpret_cast<const char*>(tags.data()) + sizeof(osmium::TagList);
-  const char* const end = reinterpret_cast<const char*>(tags.data()) + tags.byte_size();
-  while (p < end) {
-    const auto* key_end = static_cast<const char*>(std::memchr(p, '\0', static_cast<std::size_t>(end - p)));
-    if (!key_end || key_end + 1 >= end) return nullptr;
-    const char* value = key_end + 1;
-    const auto* value_end = static_cast<const char*>(std::memchr(value, '\0', static_cast<std::size_t>(end - value)));
-    if (!value_end) return nullptr;
-    if (std::strcmp(p, key) == 0) return value;
-    p = value_end + 1;
-  }
-  return nullptr;
-}
 
 class RoadCollector : public osmium::handler::Handler {
  public:
@@ -132,25 +111,6 @@ class RoadCollector : public osmium::handler::Handler {
   std::unordered_map<std::int64_t, std::uint32_t> index_;
 };
 
-// Checks a PBF's blobs before libosmium decodes them (it bounds each blob, not their number).
-void check_pbf(std::string_view pbf, const ImportLimits& limits, const std::string& source, OsmRoadStats& stats) {
-  const auto blobs = scan_pbf_blobs(pbf, limits.max_osm_pbf_blobs, limits.max_osm_decompressed_bytes);
-  check_limit(blobs.count, limits.max_osm_pbf_blobs, "max_osm_pbf_blobs", source, "PBF blobs");
-  check_limit(blobs.raw_bytes, limits.max_osm_decompressed_bytes, "max_osm_decompressed_bytes", source,
-              "bytes of OSM data after decompression (the sum of the PBF blobs' sizes)");
-  stats.input_bytes = blobs.raw_bytes;
-}
-
-// The libosmium format of the (decompressed) text of an extract.
-std::string plain_format(const osmium::io::File& file, const std::string& source) {
-  switch (file.format()) {
-    case osmium::io::file_format::xml: return "osm";
-    case osmium::io::file_format::opl: return "opl";
-    case osmium::io::file_format::o5m: return "o5m";
-    default: throw LoadError(source, "unsupported OSM format (expected .osm, .osm.gz, .osm.bz2 or .osm.pbf)");
-  }
-}
-
 }  // namespace
 
 bool is_road_class(const char* highway) {
@@ -168,36 +128,12 @@ model::RoadNetwork load_osm_roads(const std::string& path, OsmRoadStats* stats_o
   const std::string source = file_name(path);
   OsmRoadStats stats;
   try {
-    osmium::io::File file(path);
-    // libosmium reads a .pbf through a descriptor of its own that it closes only after a
-    // successful read: every PBF that failed to parse leaked one (a server importing uploads
-    // would run out). A PBF is therefore read from memory: no descriptor to leak. Its blobs are
-    // counted and their sizes summed first.
-    std::string pbf;
-    // Compressed XML is decompressed here, bounded and stoppable, into an unlinked temporary
-    // file that libosmium then reads as plain XML (its own decompression has no bound).
-    std::optional<SpoolFile> spool;
-    if (file.format() == osmium::io::file_format::pbf) {
-      pbf = read_file(path);
-      check_pbf(pbf, limits, source, stats);
-      file = osmium::io::File(pbf.data(), pbf.size(), "pbf");
-    } else if (file.compression() == osmium::io::file_compression::none ||
-               (file.compression() == osmium::io::file_compression::gzip && !starts_like_gzip(path))) {
-      // Plain text (zlib's gzread, which libosmium uses, passes a .gz that is not gzip through).
-      stats.input_bytes = std::filesystem::file_size(path);
-      check_limit(stats.input_bytes, limits.max_osm_decompressed_bytes, "max_osm_decompressed_bytes", source,
-                  "bytes of OSM data");
-      file = osmium::io::File(path, plain_format(file, source));
-    } else {
-      const auto format = plain_format(file, source);
-      spool.emplace();
-      stats.input_bytes = decompress_osm(
-          path, file.compression() == osmium::io::file_compression::gzip ? OsmCompression::gzip : OsmCompression::bzip2,
-          *spool, limits.max_osm_decompressed_bytes, source);
-      file = osmium::io::File(spool->path(), format);
-    }
+    // The PBF read into memory, or compressed XML decompressed into a temporary file, both
+    // bounded and stoppable (osm_input.hpp).
+    const OsmInput input(path, limits, source);
+    stats.input_bytes = input.input_bytes();
     util::check_stop();
-    osmium::io::Reader reader(file, osmium::osm_entity_bits::node | osmium::osm_entity_bits::way);
+    osmium::io::Reader reader(input.file(), osmium::osm_entity_bits::node | osmium::osm_entity_bits::way);
     LocationIndex index;
     LocationHandler locations(index);
     locations.ignore_errors();  // ways may reference nodes outside the extract

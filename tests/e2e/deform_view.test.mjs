@@ -25,6 +25,20 @@ async function canvasState(page) {
   }));
 }
 
+/** The share of the road canvas's pixels in the sea's colour (#aad3df), and the place names drawn. */
+async function contextShown(page) {
+  return page.locator(CANVAS).evaluate((canvas) => {
+    const { data } = canvas.getContext('2d').getImageData(0, 0, canvas.width, canvas.height);
+    let sea = 0;
+    let all = 0;
+    for (let i = 0; i < data.length; i += 4 * 7) {
+      all++;
+      if (Math.abs(data[i] - 170) < 6 && Math.abs(data[i + 1] - 211) < 6 && Math.abs(data[i + 2] - 223) < 6 && data[i + 3] > 250) sea++;
+    }
+    return { sea: sea / all, places: Number(canvas.dataset.placesDrawn), vertices: Number(canvas.dataset.contextVertices) };
+  });
+}
+
 /** Waits until the canvas has drawn at least `count` answers and has no request in flight. */
 async function waitForAnswers(page, count) {
   await page.waitForFunction(
@@ -55,6 +69,14 @@ async function run(state) {
   check(hash === `#/deform/${NETWORK}`, `the route is ${hash} after picking ${NETWORK}`);
   const credits = await page.locator('.attribution').innerText();
   check(credits.includes('OpenStreetMap'), `the attribution does not credit OpenStreetMap: "${credits}"`);
+  // Monaco's context layers (GET /roads/{id}/context): the sea from its coastline fills part of
+  // the map, and the quarters' names are drawn.
+  await page.waitForSelector(`${CANVAS}[data-context-vertices]`);
+  await page.waitForFunction((selector) => Number(document.querySelector(selector)?.dataset.placesDrawn) > 0, CANVAS);
+  const context = await contextShown(page);
+  check(context.sea > 0.1, `the sea covers ${(100 * context.sea).toFixed(1)} % of Monaco's map`);
+  check(context.places >= 3, `${context.places} place names drawn on Monaco`);
+  state.summary.push(`sea on ${(100 * context.sea).toFixed(0)} % of the map, ${context.places} place names`);
   const undeformed = await canvasState(page);
   check(undeformed.requests === 0, `${undeformed.requests} deformations drawn before any focus region`);
 
@@ -97,6 +119,8 @@ async function run(state) {
   check(dragged.errors === 0, `${dragged.errors} deformation requests failed`);
   check(await page.locator('[data-testid=deform-error]').isHidden(), 'an error box is shown');
   state.summary.push(`dragging it drew ${dragged.requests - focused.requests} more deformations`);
+  const warped = await contextShown(page);
+  check(warped.sea > 0.1 && warped.places >= 3, `after the drag the sea covers ${(100 * warped.sea).toFixed(1)} %, ${warped.places} names drawn`);
   check(answerTypes.length > 0 && answerTypes.every((type) => type === 'application/octet-stream'),
     `deformations came as ${[...new Set(answerTypes)].join(', ') || 'nothing'}, not as binary positions`);
   state.summary.push(`${answerTypes.length} answers as binary positions`);

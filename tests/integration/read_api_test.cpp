@@ -96,6 +96,62 @@ TEST_F(ReadApi, RoadsListAndGeoJson) {
   EXPECT_GT(clipped["edges"].get<int>(), 0);
 }
 
+// Whether (lon, lat) lies inside the flat [lon, lat, ...] ring (even-odd).
+bool inside(const nlohmann::json& ring, double lon, double lat) {
+  bool in = false;
+  const std::size_t n = ring.size() / 2;
+  for (std::size_t i = 0, j = n - 1; i < n; j = i++) {
+    const double xi = ring[2 * i], yi = ring[2 * i + 1], xj = ring[2 * j], yj = ring[2 * j + 1];
+    if ((yi > lat) != (yj > lat) && lon < (xj - xi) * (lat - yi) / (yj - yi) + xi) in = !in;
+  }
+  return in;
+}
+
+// Monaco's context: the sea from its coastline (the open Mediterranean to the south in it, the
+// Rock of Monaco-Ville and the Jardin Exotique not), parks and buildings; coarser simplification
+// returns fewer points; `kinds` filters; bad parameters are refused naming the field.
+TEST_F(ReadApi, RoadContextHasMonacosSea) {
+  const auto context = live->get_json("/api/v1/roads/monaco/context");
+  EXPECT_EQ(context["network"], "monaco");
+  EXPECT_FALSE(context["attribution"].get<std::string>().empty());
+  std::size_t seas = 0, parks = 0, buildings = 0;
+  bool open_sea = false, rock = false, garden = false;
+  for (const auto& a : context["areas"]) {
+    const auto kind = a["kind"].get<std::string>();
+    ASSERT_FALSE(a["rings"].empty());
+    for (const auto& ring : a["rings"]) ASSERT_GE(ring.size(), 6u);
+    if (kind == "park") ++parks;
+    if (kind == "building") ++buildings;
+    if (kind != "sea") continue;
+    ++seas;
+    open_sea = open_sea || inside(a["rings"][0], 7.43, 43.60);
+    rock = rock || inside(a["rings"][0], 7.4230, 43.7310);
+    garden = garden || inside(a["rings"][0], 7.4150, 43.7312);
+  }
+  EXPECT_GE(seas, 1u);
+  EXPECT_TRUE(open_sea);
+  EXPECT_FALSE(rock);
+  EXPECT_FALSE(garden);
+  EXPECT_GT(parks, 0u);
+  EXPECT_GT(buildings, 100u);
+
+  const auto coarse = live->get_json("/api/v1/roads/monaco/context?simplify_m=50");
+  EXPECT_LT(coarse["points"].get<std::size_t>(), context["points"].get<std::size_t>() / 2);
+  const auto sea_only = live->get_json("/api/v1/roads/monaco/context?kinds=sea");
+  ASSERT_GE(sea_only["areas"].size(), 1u);
+  for (const auto& a : sea_only["areas"]) EXPECT_EQ(a["kind"], "sea");
+  EXPECT_TRUE(sea_only["lines"].empty());
+  EXPECT_TRUE(sea_only["places"].empty());
+
+  const auto unknown = live->get("/api/v1/roads/monaco/context?kinds=sea,lava");
+  EXPECT_EQ(unknown.status, 400);
+  EXPECT_EQ(nlohmann::json::parse(unknown.body)["error"]["field"], "kinds") << unknown.body;
+  const auto far = live->get("/api/v1/roads/monaco/context?simplify_m=1e9");
+  EXPECT_EQ(far.status, 400);
+  EXPECT_EQ(nlohmann::json::parse(far.body)["error"]["field"], "simplify_m") << far.body;
+  EXPECT_EQ(live->get("/api/v1/roads/atlantis/context").status, 404);
+}
+
 TEST_F(ReadApi, GzipWhenAccepted) {
   auto plain = live->get("/api/v1/roads/monaco");
   auto packed = live->get("/api/v1/roads/monaco", {{"Accept-Encoding", "gzip"}});

@@ -1,5 +1,6 @@
-// OSM road imports (core/load/osm_roads: load_osm_roads through libosmium, as the importer
-// calls it) on a file rewritten for every input. Built twice: fuzz_osm_xml writes roads.osm
+// OSM road imports (core/load/osm_roads: load_osm_roads, then core/load/osm_context:
+// load_osm_context, both through libosmium, as the importer calls them) on a file rewritten for
+// every input. Built twice: fuzz_osm_xml writes roads.osm
 // (XML), fuzz_osm_pbf writes roads.osm.pbf; libosmium picks the format from the extension.
 // Clean error: load::LoadError (the loader wraps libosmium's exceptions). Either way no file
 // descriptor may stay open (a server importing uploads would run out).
@@ -7,7 +8,10 @@
 #include "fuzz_common.hpp"
 
 #include "load/load_error.hpp"
+#include "load/osm_context.hpp"
 #include "load/osm_roads.hpp"
+
+#include <cmath>
 
 #ifndef TOURMAP_FUZZ_OSM_FILE
 #error "define TOURMAP_FUZZ_OSM_FILE (roads.osm or roads.osm.pbf)"
@@ -27,6 +31,23 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       for (auto n : w.nodes)
         FUZZ_CHECK(n < net.nodes.size());
     }
+  } catch (const load::LoadError&) {
+  }
+  const auto located = [](const geo::LonLat& p) { return std::isfinite(p.lon) && std::isfinite(p.lat); };
+  try {
+    const auto context = load::load_osm_context(path);
+    for (const auto& a : context.areas) {
+      FUZZ_CHECK(!a.rings.empty());
+      for (const auto& ring : a.rings) {
+        FUZZ_CHECK(ring.size() >= 3);
+        for (const auto& p : ring) FUZZ_CHECK(located(p));
+      }
+    }
+    for (const auto& l : context.lines) {
+      FUZZ_CHECK(l.points.size() >= 2);
+      for (const auto& p : l.points) FUZZ_CHECK(located(p));
+    }
+    for (const auto& p : context.places) FUZZ_CHECK(!p.name.empty() && located(p.pos));
   } catch (const load::LoadError&) {
   }
   FUZZ_CHECK(fuzz::open_fds() <= fds);

@@ -118,6 +118,52 @@ TEST_F(RepoTest, RoadNetworkRoundTripRebuildsWays) {
   EXPECT_EQ(count("road_edges"), 0);
 }
 
+// The context layers go in with the roads and come back as they went in; a failed write leaves
+// the earlier ones; deleting the network deletes them.
+TEST_F(RepoTest, RoadContextRoundTripWithTheRoads) {
+  model::RoadNetwork net;
+  net.nodes = {{1, {7.0, 43.0}}, {2, {7.001, 43.0}}};
+  net.ways = {{100, "residential", "Rue A", {0, 1}}};
+  net.edges = model::edges_of(net.ways);
+  model::ContextLayers layers;
+  layers.areas.push_back({model::ContextAreaKind::sea,
+                          {{{7.0, 42.9}, {7.1, 42.9}, {7.1, 43.0}}, {{7.05, 42.95}, {7.06, 42.95}, {7.05, 42.96}}}});
+  layers.areas.push_back({model::ContextAreaKind::park, {{{7.0, 43.0}, {7.0001, 43.0}, {7.0, 43.0001}}}});
+  layers.lines.push_back({model::ContextLineKind::river, "Rhein", false, {{9.5, 47.1}, {9.51, 47.2}}});
+  layers.lines.push_back({model::ContextLineKind::railway, "", true, {{9.5, 47.1}, {9.52, 47.1}, {9.53, 47.1}}});
+  layers.places.push_back({model::ContextPlaceKind::town, "Vaduz", {9.52, 47.14}, 14});
+  save_road_network(db, {"mini", "Mini", "osm"}, net, {"", "", "mini.osm", "f", 9, 0.1}, layers);
+  const auto back = load_road_context(db, "mini");
+  ASSERT_EQ(back.areas.size(), 2u);
+  EXPECT_EQ(back.areas[0].kind, model::ContextAreaKind::sea);
+  ASSERT_EQ(back.areas[0].rings.size(), 2u);
+  EXPECT_EQ(back.areas[0].rings[1][1].lon, 7.06);
+  EXPECT_EQ(back.areas[0].rings[1][2].lat, 42.96);
+  EXPECT_EQ(back.areas[1].kind, model::ContextAreaKind::park);
+  ASSERT_EQ(back.lines.size(), 2u);
+  EXPECT_EQ(back.lines[0].name, "Rhein");
+  EXPECT_FALSE(back.lines[0].tunnel);
+  EXPECT_TRUE(back.lines[1].tunnel);
+  EXPECT_EQ(back.lines[1].kind, model::ContextLineKind::railway);
+  EXPECT_EQ(back.lines[1].points.size(), 3u);
+  ASSERT_EQ(back.places.size(), 1u);
+  EXPECT_EQ(back.places[0].name, "Vaduz");
+  EXPECT_EQ(back.places[0].rank, 14);
+  EXPECT_EQ(back.places[0].pos.lon, 9.52);
+
+  // A failing write of the network (a trigger) keeps the context it had.
+  db.exec("CREATE TRIGGER boom BEFORE INSERT ON road_context WHEN NEW.kind = 'forest' BEGIN SELECT RAISE(ABORT, 'boom'); END");
+  model::ContextLayers other;
+  other.areas.push_back({model::ContextAreaKind::forest, {{{7.0, 43.0}, {7.1, 43.0}, {7.0, 43.1}}}});
+  EXPECT_THROW(save_road_network(db, {"mini", "Mini", "osm"}, net, {"", "", "mini.osm", "g", 9, 0.1}, other), DbError);
+  db.exec("DROP TRIGGER boom");
+  EXPECT_EQ(load_road_context(db, "mini").areas.size(), 2u);
+
+  EXPECT_TRUE(delete_road_network(db, "mini"));
+  EXPECT_EQ(count("road_context"), 0);
+  EXPECT_TRUE(load_road_context(db, "mini").areas.empty());
+}
+
 TEST_F(RepoTest, ResultCache) {
   EXPECT_FALSE(cache_get(db, "k"));
   cache_put(db, "k", "layout", {"application/json", std::string("{\"a\":1}\0x", 9)});

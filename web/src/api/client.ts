@@ -14,6 +14,7 @@ import type {
   PoiCollection,
   PoiFeature,
   RoadCollection,
+  RoadContext,
   RoadNetworkSummary,
   RoadTopology,
   VisualWorthRaster,
@@ -156,6 +157,11 @@ export function fetchRoads(id: string, signal?: AbortSignal): Promise<RoadCollec
 /** The road network as nodes and ways: what the Deform view draws and routes on. */
 export function fetchRoadTopology(id: string, signal?: AbortSignal): Promise<RoadTopology> {
   return getJson<RoadTopology>(`/roads/${segment(id)}?format=topology`, signal);
+}
+
+/** The context layers of a road network, simplified to `simplifyM` metres. */
+export function fetchRoadContext(id: string, simplifyM: number, signal?: AbortSignal): Promise<RoadContext> {
+  return getJson<RoadContext>(`/roads/${segment(id)}/context?simplify_m=${simplifyM}`, signal);
 }
 
 /** The binary deform answer's first bytes (api/positions_binary.hpp). */

@@ -162,6 +162,18 @@ export type ServerEvent =
   | { type: 'error'; code: string; message: string };
 
 /** GET /api/v1/roads/{id}?format=topology: nodes once each, ways as lists of node indices. */
+/** GET /roads/{id}/context: what a deformed map draws under its roads (openapi.yaml). */
+export interface RoadContext {
+  network: string;
+  version: number;
+  attribution: string;
+  points: number;
+  /** rings: [lon, lat, lon, lat, ...] each, the outer one first */
+  areas: { kind: string; rings: number[][] }[];
+  lines: { kind: string; name?: string; tunnel?: boolean; points: number[] }[];
+  places: { kind: string; name: string; rank: number; pos: [number, number] }[];
+}
+
 export interface RoadTopology {
   network: string;
   version: number;

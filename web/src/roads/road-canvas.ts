@@ -1,5 +1,6 @@
 import type { DeformGrid } from '../api/types';
 import type { Frame } from '../map/projection';
+import type { ContextLayer } from './context-layer';
 import { ROAD_CLASSES, type RoadClass, type RoadGraph } from './road-graph';
 
 /** Major roads darker and wider; paths light and thin. Widths in CSS pixels at any zoom. */
@@ -45,6 +46,12 @@ export class RoadCanvas {
   private gridPath?: Path2D;
   private supportPath?: Path2D;
   private routePath?: Path2D;
+  /** Sea, water, land use, rivers, railways and place names, warped with the roads. */
+  private layers?: ContextLayer;
+  private contextPaths?: ReturnType<ContextLayer['buildPaths']>;
+  private contextLevel = NaN;
+  /** Place names drawn at the last draw. */
+  placesDrawn = 0;
   private positions?: Float64Array;
   /** The undeformed nodes (frame coordinates), drawn as the ghost of the original map. */
   private original?: Float64Array;
@@ -96,8 +103,16 @@ export class RoadCanvas {
     this.setPositions(original);
   }
 
+  /** The network's context layers (already warped to the positions to come), or undefined for none. */
+  setContext(context: ContextLayer | undefined): void {
+    this.layers = context;
+    this.contextPaths = undefined;
+    this.dirty = true;
+  }
+
   clear(): void {
     this.graph = undefined;
+    this.layers = this.contextPaths = undefined;
     this.positions = this.original = undefined;
     this.classPaths.clear();
     this.pathsLevel = this.ghostLevel = NaN;
@@ -110,6 +125,7 @@ export class RoadCanvas {
   setPositions(positions: Float64Array): void {
     this.positions = positions;
     this.pathsLevel = NaN;  // built at the next draw, for its zoom
+    this.contextPaths = undefined;
     this.routePath = this.buildRoute();
     this.dirty = true;
   }
@@ -200,6 +216,13 @@ export class RoadCanvas {
       ctx.setLineDash(dash ? dash.map((length) => (length * ratio) / k) : []);
       ctx.stroke(path);
     };
+    if (this.layers) {
+      if (!this.contextPaths || level !== this.contextLevel) {
+        this.contextPaths = this.layers.buildPaths(SIMPLIFY_PX / ZOOM_STEP ** level);
+        this.contextLevel = level;
+      }
+      this.layers.drawShapes(ctx, this.contextPaths, ratio / k);
+    }
     if (this.showOriginal) stroke(this.ghost, GHOST.color, GHOST.width);
     if (this.showGrid) {
       stroke(this.gridPath, GRID.color, GRID.width);
@@ -211,6 +234,11 @@ export class RoadCanvas {
       ctx.lineCap = 'round';
       stroke(this.routePath, ROUTE.casing, ROUTE.width + 3);
       stroke(this.routePath, ROUTE.color, ROUTE.width);
+    }
+    if (this.layers) {
+      ctx.setTransform(1, 0, 0, 1, 0, 0);
+      const toScreen = (x: number, y: number): [number, number] => [x * k + view.x * ratio, y * k + view.y * ratio];
+      this.placesDrawn = this.layers.drawPlaces(ctx, toScreen, ratio, width, height);
     }
     this.lastDrawMs = performance.now() - started;
   }

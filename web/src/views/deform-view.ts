@@ -1,4 +1,4 @@
-import { ApiError, fetchRoadNetworks, fetchRoadTopology, isAbort, postDeform } from '../api/client';
+import { ApiError, fetchRoadContext, fetchRoadNetworks, fetchRoadTopology, isAbort, postDeform } from '../api/client';
 import type { DeformBody, DeformGrid, DeformKind, DeformResponse, DeformStats, LastImport, RoadNetworkSummary } from '../api/types';
 import { DestinationTool } from '../deform/destination-tool';
 import { Displacement } from '../deform/displacement';
@@ -11,6 +11,7 @@ import type { DeformTool, ScreenPoint, ToolContext } from '../deform/tool';
 import { mapControls } from '../map/controls';
 import { frameFor, type Frame } from '../map/projection';
 import { SvgMap } from '../map/svg-map';
+import { ContextLayer } from '../roads/context-layer';
 import { PointIndex } from '../roads/point-index';
 import { RoadCanvas } from '../roads/road-canvas';
 import { RoadGraph } from '../roads/road-graph';
@@ -24,6 +25,9 @@ const MODES: { kind: DeformKind; label: string }[] = [
   { kind: 'mental', label: 'Mental map' },
   { kind: 'destination', label: 'Destination' },
 ];
+
+/** Metres the context layers are simplified to (a tenth of a pixel at the closest zoom of a town). */
+const CONTEXT_SIMPLIFY_M = 2;
 
 /** The network on screen and what is derived from it once. */
 interface Network {
@@ -97,6 +101,7 @@ export class DeformView implements View {
   private load?: AbortController;
   private network?: Network;
   private displacement?: Displacement;
+  private context?: ContextLayer;
   private readonly shown = new Map<DeformKind, Shown>();
   private requests = 0;
   private errors = 0;
@@ -249,6 +254,7 @@ export class DeformView implements View {
       this.network = { summary, graph, frame, original, index, context };
       this.displacement = new Displacement(original, index, original, graph.edges);
       this.canvas.setNetwork(graph, original);
+      void this.loadContext(summary, frame, original, index, load.signal);
       for (const tool of Object.values(this.tools)) tool.reset(context);
       this.map.setFrame(frame);
       showAttribution(this.attribution, [...summary.attribution, ...topology.attribution]);
@@ -266,6 +272,25 @@ export class DeformView implements View {
     }
   }
 
+  /**
+   * The network's sea, water, land use, rivers, railways and place names, drawn under the roads
+   * and warped with them. Optional: the roads are usable before (or without) it.
+   */
+  private async loadContext(summary: RoadNetworkSummary, frame: Frame, original: Float64Array, index: PointIndex, signal: AbortSignal): Promise<void> {
+    try {
+      const context = await fetchRoadContext(summary.id, CONTEXT_SIMPLIFY_M, signal);
+      if (signal.aborted || this.network?.original !== original) return;
+      this.context = new ContextLayer(context, frame, original, index);
+      this.context.warp(original, this.displacement?.deformed ?? original);
+      this.canvas.setContext(this.context);
+      this.canvas.element.dataset.contextVertices = String(this.context.vertexCount);
+      this.map.requestRender();
+    } catch (error) {
+      if (isAbort(error)) return;
+      this.canvas.element.dataset.contextError = String(error);
+    }
+  }
+
   /** Forgets the network on screen: requests, tool state, drawings. */
   private closeNetwork(): void {
     this.loop.reset();
@@ -273,6 +298,8 @@ export class DeformView implements View {
     this.dragging(false);
     this.network = undefined;
     this.displacement = undefined;
+    this.context = undefined;
+    delete this.canvas.element.dataset.contextVertices;
     this.shown.clear();
     this.canvas.clear();
     for (const tool of Object.values(this.tools)) tool.reset(null);
@@ -354,6 +381,7 @@ export class DeformView implements View {
     const network = this.network!;
     const positions = shown?.positions ?? network.original;
     this.displacement = new Displacement(network.original, network.index, positions, network.graph.edges);
+    this.context?.warp(network.original, positions);
     this.canvas.setPositions(positions);
     this.canvas.setGrid(shown && this.options.value.showGrid ? shown.grid : null, network.frame);
     this.canvas.element.dataset.positionsHash = shown?.hash ?? positionsHash(network.graph.lonLat);
@@ -441,6 +469,7 @@ export class DeformView implements View {
     this.canvas.draw(this.map.view);
     this.canvas.element.dataset.drawMs = this.canvas.lastDrawMs.toFixed(1);
     this.canvas.element.dataset.draws = String(this.canvas.draws);
+    this.canvas.element.dataset.placesDrawn = String(this.canvas.placesDrawn);
     this.overlay.replaceChildren();
     if (this.network) this.tool.render(this.overlay);
     this.meter?.frames.push(performance.now());
