@@ -4,7 +4,9 @@
 // updates per second (deformed maps received and drawn), browser frames per second and their
 // p95 interval, the median round trip, and the last answer's decode and draw times, for the
 // positions as JSON (the baseline, the answer a client gets without asking for binary) and as
-// binary (api/positions_binary.hpp), measured in the same run.
+// binary (api/positions_binary.hpp), measured in the same run; and binary without the context
+// layers (sea, water, land use, buildings, rivers, names: GET /roads/{id}/context refused), the
+// baseline of what drawing and warping them costs.
 //
 // Run from the repository root after ./scripts/build:
 //   node bench/deform_drag_bench.mjs [--seconds 5] [--networks monaco,liechtenstein]
@@ -68,13 +70,16 @@ async function drag(page) {
     p95FrameMs: p95,
     rttMs: Number(stats.dragRttMedian),
     applyMs: Number(canvas.applyMs),
+    contextVertices: Number(canvas.contextVertices || 0),
     drawMs: Number(canvas.drawMs),
     errors: Number(canvas.errors || 0),
   };
 }
 
-async function measure(page, baseUrl, network, wire) {
+async function measure(page, baseUrl, network, wire, context = true) {
   await page.unroute('**/api/v1/deform/**').catch(() => {});
+  await page.unroute('**/api/v1/roads/*/context*').catch(() => {});
+  if (!context) await page.route('**/api/v1/roads/*/context*', (route) => route.abort());
   // The JSON baseline: the request without the client's Accept, as an older client sends it.
   await page.route('**/api/v1/deform/**', (route) =>
     wire === 'json'
@@ -83,6 +88,7 @@ async function measure(page, baseUrl, network, wire) {
   await page.goto('about:blank');  // a fresh load of the client for each row
   await openApp(page, baseUrl, `#/deform/${network}`);
   await page.waitForSelector(`${CANVAS}[data-status=ready][data-network="${network}"]`, { timeout: 60_000 });
+  if (context) await page.waitForSelector(`${CANVAS}[data-context-vertices]`, { timeout: 60_000 });
   const map = await page.locator('[data-testid=road-map]').boundingBox();
   await page.mouse.click(map.x + map.width / 2, map.y + map.height / 2);
   await page.waitForFunction((selector) => Number(document.querySelector(selector)?.dataset.requests) >= 1, CANVAS, { timeout: 60_000 });
@@ -95,17 +101,18 @@ async function run(state) {
   const rows = [];
   for (const network of NETWORKS) {
     const json = await measure(page, baseUrl, network, 'json');
+    const bare = await measure(page, baseUrl, network, 'binary', false);
     const binary = await measure(page, baseUrl, network, 'binary');
-    for (const [wire, r] of [['JSON', json], ['binary', binary]])
-      rows.push(`| ${network} | ${wire} | ${r.movesPerSecond.toFixed(0)} | ${r.updatesPerSecond.toFixed(1)} | ${(r.updatesPerSecond / json.updatesPerSecond).toFixed(2)}x | ${r.answers} | ${r.fps.toFixed(1)} | ${r.p95FrameMs.toFixed(1)} | ${r.rttMs.toFixed(1)} | ${r.applyMs.toFixed(1)} | ${r.drawMs.toFixed(1)} | ${r.errors} |`);
+    for (const [wire, r] of [['JSON', json], ['binary, no context', bare], ['binary', binary]])
+      rows.push(`| ${network} | ${wire} | ${r.contextVertices} | ${r.movesPerSecond.toFixed(0)} | ${r.updatesPerSecond.toFixed(1)} | ${(r.updatesPerSecond / json.updatesPerSecond).toFixed(2)}x | ${r.answers} | ${r.fps.toFixed(1)} | ${r.p95FrameMs.toFixed(1)} | ${r.rttMs.toFixed(1)} | ${r.applyMs.toFixed(1)} | ${r.drawMs.toFixed(1)} | ${r.errors} |`);
   }
   console.log(`\n# Deform view while dragging a focus region (${SECONDS} s per row, 1280 x 800, chromium headless)\n`);
-  console.log('pointer moves/s: what the benchmark sent (one per 16 ms at most); updates/s: deformed maps received and drawn per second of drag (vs JSON in the same run); fps and p95: browser frames and their interval; round trip: median, request to parsed answer; decode+project and draw: the last answer\'s, ms.\n');
-  console.log('| network | positions | pointer moves/s | updates/s | vs JSON | answers | fps | p95 frame ms | round trip ms | decode+project ms | draw ms | errors |');
-  console.log('|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|');
+  console.log('pointer moves/s: what the benchmark sent (one per 16 ms at most); updates/s: deformed maps received and drawn per second of drag (vs JSON in the same run); fps and p95: browser frames and their interval; round trip: median, request to parsed answer; decode+project, with the warp of the context layers, and draw: the last answer\'s, ms.\n');
+  console.log('| network | positions | context vertices | pointer moves/s | updates/s | vs JSON | answers | fps | p95 frame ms | round trip ms | decode+project ms | draw ms | errors |');
+  console.log('|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|');
   for (const row of rows) console.log(row);
   console.log('');
   state.summary.push(`${rows.length} rows`);
 }
 
-await runTest('deform_drag_bench', 60_000 + NETWORKS.length * 2 * (SECONDS * 1000 + 60_000), run);
+await runTest('deform_drag_bench', 60_000 + NETWORKS.length * 3 * (SECONDS * 1000 + 60_000), run);

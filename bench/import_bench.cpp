@@ -2,11 +2,14 @@
 // parsed alone (the core loader: the baseline) and imported (loader + one SQLite transaction
 // into a fresh database). Prints Google Benchmark's table, then a summary:
 // file, nodes/edges/stations/POIs, seconds, rows/s, and import time relative to parse time.
+// A road import reads its extract twice (roads, then the context layers); the context loader
+// alone is measured too (context/FILE) and summarised against the roads' parse.
 //
 //   build/bench/import_bench [--data-dir DIR] [google benchmark flags]
 
 #include "load/file.hpp"
 #include "load/metro_load.hpp"
+#include "load/osm_context.hpp"
 #include "load/osm_roads.hpp"
 #include "load/poi_load.hpp"
 #include "store/importer.hpp"
@@ -32,6 +35,14 @@ using Clock = std::chrono::steady_clock;
 struct Counts {
   std::size_t nodes = 0, edges = 0, stations = 0, pois = 0, rows = 0;
 };
+
+// The context layers of each road extract, parsed alone.
+struct ContextCounts {
+  std::size_t areas = 0, sea = 0, lines = 0, places = 0, points = 0;
+  double parse_s = 0;
+  int runs = 0;
+};
+std::map<std::string, ContextCounts> context_results;
 
 struct Case {
   std::string file;  // as named in the summary
@@ -99,6 +110,23 @@ std::vector<Case> cases_from(const store::Manifest& manifest) {
   return cases;
 }
 
+void bench_context(benchmark::State& state, const std::string& file, const std::string& name) {
+  auto& m = context_results[name];
+  for (auto _ : state) {
+    auto start = Clock::now();
+    load::OsmContextStats stats;
+    const auto layers = load::load_osm_context(file, &stats);
+    m.parse_s += std::chrono::duration<double>(Clock::now() - start).count();
+    ++m.runs;
+    m.areas = layers.areas.size();
+    m.sea = stats.sea_rings;
+    m.lines = layers.lines.size();
+    m.places = layers.places.size();
+    m.points = stats.points;
+  }
+  state.counters["points"] = static_cast<double>(m.points);
+}
+
 void bench_parse(benchmark::State& state, const Case& c) {
   auto& m = results[c.file];
   for (auto _ : state) {
@@ -152,6 +180,18 @@ void print_summary(const std::vector<Case>& cases) {
                 c.kind.c_str(), m.counts.nodes, m.counts.edges, m.counts.stations, m.counts.pois, m.counts.rows, parse,
                 import, m.counts.rows / import, import / parse);
   }
+  std::printf("\nContext layers per road extract (load_osm_context alone; baseline = the roads' parse, same run)\n\n");
+  std::printf("| file | areas | of them sea | lines | places | points | size (16 B/point) | parse s | vs roads parse |\n");
+  std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+  for (const auto& [file, m] : context_results) {
+    if (!m.runs) continue;
+    const auto& roads = results[file];
+    const double parse = m.parse_s / m.runs;
+    const double roads_parse = roads.parse_runs ? roads.parse_s / roads.parse_runs : 0;
+    std::printf("| %s | %zu | %zu | %zu | %zu | %zu | %.2f MB | %.4f | %.2fx |\n", file.c_str(), m.areas, m.sea, m.lines,
+                m.places, m.points, static_cast<double>(m.points) * 16 / 1e6, parse,
+                roads_parse > 0 ? parse / roads_parse : 0.0);
+  }
 }
 
 }  // namespace
@@ -182,6 +222,12 @@ int main(int argc, char** argv) {
                                  [&c, dir = tmp.string()](benchmark::State& s) { bench_import(s, c, dir); })
         ->Unit(benchmark::kMillisecond);
   }
+  for (const auto& r : manifest.roads)
+    benchmark::RegisterBenchmark(("context/" + load::file_name(r.file)).c_str(),
+                                 [file = r.file, name = load::file_name(r.file)](benchmark::State& s) {
+                                   bench_context(s, file, name);
+                                 })
+        ->Unit(benchmark::kMillisecond);
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
   print_summary(cases);
