@@ -32,13 +32,15 @@ const std::string kLayout = "/api/v1/cities/freiburg/layout";
 // How long a background job may take here. About 8 s idle, but the job runs at nice 10 and
 // CBC's budget is CPU time (api/mip_runner.hpp): beside other tests on both cores it gets a
 // tenth of a core or less, and it still must finish and win.
-// Below ctest's 120 s per integration test, so that a job that never wins fails here, with
-// the layout's state, rather than by ctest's timeout.
-constexpr std::chrono::seconds kJobWait{100};
+// Below ctest's 300 s per integration test, so that a job that never wins fails here, with
+// the layout's state, rather than by ctest's timeout. Under ASan CBC alone may take most of
+// kWinnable's 150 s of CPU.
+constexpr std::chrono::seconds kJobWait{240};
 // The tests that need Freiburg's MIP to win give CBC more than the server's default 10 s of
 // CPU: it stops at the optimum anyway (4-8 s in the Release build), but under ASan, which
-// intercepts CBC's allocations in the child process, 10 s were not enough to find it.
-const std::vector<std::string> kWinnable = {"--improve-mip", "60"};
+// intercepts CBC's allocations in the child process, 10 s were not enough to find it, and 60 s
+// not always (a clean-clone CI run: CBC killed at its 60 s + 3 s of CPU, no incumbent kept).
+const std::vector<std::string> kWinnable = {"--improve-mip", "150"};
 
 // Imports Freiburg (again: a new city version) into the running server's database.
 void import_freiburg(const LiveServer& live) {
@@ -171,18 +173,25 @@ TEST(LayoutImprovement, LondonGetsRoomForNamesInTheBackground) {
   EXPECT_EQ(fast["solver"]["improvement"], "scheduled");
   EXPECT_FALSE(fast["solver"].contains("label_room"));  // the first answer spends no time on it
   const auto [fast_named, fast_unnamed] = named_at_ring_zoom(fast);
-  ASSERT_GT(fast_unnamed, 0u) << "London's centre is named in full at 75 px: this test needs another network";
 
-  const auto event = next_event(ws, "layout_improved", kJobWait);
-  ASSERT_FALSE(event.is_null()) << "no layout_improved event within " << kJobWait.count() << " s";
+  // The job computes the fast layout again and makes room in it. On a slow machine (ASan)
+  // London's spacing and bend reduction stop at their time budgets, so its layout may differ
+  // from the one served first (release: 2-3 of 302 unnamed at 75 px; ASan: 0 seen): what the job
+  // did is judged against its own start. It may keep the fast layout only when that start named
+  // every station; with any left out it must have made room for some.
+  wait_idle(live, kJobWait);
+  const auto improved = live.get_json("/api/v1/cities/london/layout");
+  if (improved["solver"]["improvement"] == "none") {
+    const auto& tried = improved["solver"]["tried"]["label_room"];
+    EXPECT_EQ(tried["status"], "not_needed") << improved["solver"];
+    EXPECT_EQ(tried["unnamed_before"], 0) << improved["solver"];
+    return;
+  }
+  const auto event = next_event(ws, "layout_improved", 5s);
+  ASSERT_FALSE(event.is_null()) << "an improved layout without a layout_improved event";
   EXPECT_EQ(event["city"], "london");
   EXPECT_EQ(event["solver"]["kind"], "fast");  // no MIP over 250 stations
   EXPECT_EQ(event["solver"]["label_room"]["status"], "kept");
-
-  // The job computes the fast layout again and makes room in it. On a slow machine (ASan)
-  // London's spacing and bend reduction stop at their time budgets, so that layout may differ a
-  // little from the one served first: what the job reports is checked against its own start.
-  const auto improved = live.get_json("/api/v1/cities/london/layout");
   EXPECT_EQ(improved["solver"]["improvement"], "applied");
   const auto& room = improved["solver"]["label_room"];
   EXPECT_GE(room["kept"].get<int>(), 1);
@@ -266,7 +275,8 @@ TEST(LayoutImprovement, RepeatedDefaultRequestsScheduleOnce) {
   }
   wait_idle(live, kJobWait);
   EXPECT_EQ(gauge(live, "tourmap_layout_improvements_scheduled"), 1);
-  EXPECT_EQ(live.get_json(kLayout)["solver"]["improvement"], "applied");
+  const auto solver = live.get_json(kLayout)["solver"];
+  EXPECT_EQ(solver["improvement"], "applied") << solver;  // else solver.tried says what the job tried
   EXPECT_EQ(gauge(live, "tourmap_layout_improvements_scheduled"), 1);
 }
 
