@@ -87,6 +87,19 @@ nlohmann::json next_event(WsClient& ws, const std::string& type, std::chrono::mi
   return nullptr;
 }
 
+// True when Freiburg's job ended without a win because CBC proved its optimum and that optimum
+// had no fewer bends than the job's own fast layout. Under ASan the fast path stops at its time
+// budgets and its layout varies (a clean-clone CI run: 32 bends both); only then may a test that
+// needs the MIP to win skip. A MIP that was killed, found nothing or never ran still fails.
+bool mip_was_no_better(const LiveServer& live) {
+  wait_idle(live, kJobWait);
+  auto solver = live.get_json(kLayout)["solver"];
+  if (solver["improvement"] != "none") return false;
+  auto& mip = solver["tried"]["mip"];
+  return mip["status"] == "optimal" && mip["accepted"] == false && mip["reason"].is_string() &&
+         mip["reason"].get<std::string>().find(" bends, the fast layout ") != std::string::npos;
+}
+
 TEST(LayoutImprovement, DefaultLayoutIsFastThenImprovedAndAnnounced) {
   LiveServer live(kWinnable);
   import_freiburg(live);
@@ -105,6 +118,7 @@ TEST(LayoutImprovement, DefaultLayoutIsFastThenImprovedAndAnnounced) {
   EXPECT_LT(first_s, 2.0);  // tens of milliseconds unless the machine is very busy
 
   const auto event = next_event(ws, "layout_improved", kJobWait);
+  if (event.is_null() && mip_was_no_better(live)) GTEST_SKIP() << "the MIP's optimum was no better than this run's fast layout";
   ASSERT_FALSE(event.is_null()) << "no layout_improved event within " << kJobWait.count() << " s; the layout now: "
                                 << nlohmann::json::parse(live.get(kLayout).body)["solver"]
                                 << " (has the fast path got so good that the MIP no longer wins on Freiburg?)";
@@ -275,6 +289,7 @@ TEST(LayoutImprovement, RepeatedDefaultRequestsScheduleOnce) {
   }
   wait_idle(live, kJobWait);
   EXPECT_EQ(gauge(live, "tourmap_layout_improvements_scheduled"), 1);
+  if (mip_was_no_better(live)) GTEST_SKIP() << "the MIP's optimum was no better than this run's fast layout";
   const auto solver = live.get_json(kLayout)["solver"];
   EXPECT_EQ(solver["improvement"], "applied") << solver;  // else solver.tried says what the job tried
   EXPECT_EQ(gauge(live, "tourmap_layout_improvements_scheduled"), 1);
