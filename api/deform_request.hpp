@@ -76,7 +76,7 @@ struct DeformRequest {
   int max_iterations = 20000;
   double tolerance = 1e-8;
   double time_limit_ms = 10000.0;
-  bool relax = false;
+  bool relax = true;   // relax fold-overs away after solving (paper 4.4.2); false shows the raw solve
   bool check_crossings = false;
   enum class RoadsOutput { geojson, positions, none } roads_output = RoadsOutput::geojson;
   bool grid_output = true;

@@ -19,6 +19,7 @@ RunResult run(Prepared& p, const PlanarNetwork& net, const Targets& targets, con
   t = Clock::now();
   r.points = points_from(p, r.unknowns);
   if (p.method == Method::grid) {
+    if (options.snap_tjunctions) snap_tjunctions(*p.grid, r.points);
     r.inverted_quads = count_inverted_quads(*p.grid, r.points);
     if (options.relax && r.inverted_quads > 0) {
       r.relax_iterations = relax_foldovers(p, r.points, options.relax_iterations);

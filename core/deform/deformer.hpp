@@ -11,8 +11,9 @@ namespace tourmap::deform {
 
 struct RunOptions {
   SolveOptions solve;
-  bool relax = false;             // run the foldover relaxation step
+  bool relax = true;              // run the foldover relaxation step (4.4.2) when a quad folded
   int relax_iterations = 100;
+  bool snap_tjunctions = true;    // off only to measure what it changes (bench/deform_bench)
   bool count_crossings = false;   // road edge crossings added by the deformation (costly on big maps)
 };
 

@@ -59,6 +59,17 @@ std::size_t count_crossings(const std::vector<XY>& nodes,
   return crossings;
 }
 
+void snap_tjunctions(const grid::Grid& g, std::vector<XY>& pos) {
+  // Restricted quadtree (2:1 across sides): a coarse side holds at most one T-junction, and no
+  // coarse quad's corner is itself a T-junction of a side that holds one (its finer neighbour
+  // would be two levels finer than the quad beyond), so the order does not matter.
+  for (const auto& t : g.tjunctions) {
+    const auto& c = g.quads[t.coarse_quad].corners;
+    const XY a = pos[c[t.side]], b = pos[c[(t.side + 1) % 4]];
+    pos[t.vertex] = {0.5 * (a.x + b.x), 0.5 * (a.y + b.y)};
+  }
+}
+
 int relax_foldovers(const Prepared& p, std::vector<XY>& points, int max_iterations) {
   if (p.method != Method::grid || !p.grid) return 0;
   const auto& g = *p.grid;
@@ -108,6 +119,7 @@ int relax_foldovers(const Prepared& p, std::vector<XY>& points, int max_iteratio
       next.emplace_back(v, moved);
     }
     for (const auto& [v, pos] : next) points[v] = pos;
+    snap_tjunctions(g, points);
   }
   return it;
 }

@@ -17,8 +17,15 @@ std::size_t count_inverted_quads(const grid::Grid& grid, const std::vector<XY>& 
 // segment predicates).
 std::size_t count_crossings(const std::vector<XY>& nodes, const std::vector<std::pair<std::uint32_t, std::uint32_t>>& edges);
 
+// Puts every T-junction vertex on the midpoint of its coarse quad's deformed side. The system keeps T-junctions near
+// that midpoint only softly (support edges, 4.4.1); exactly there, the fine quads and the coarse
+// one meet along one line, so the piecewise bilinear map has no crack or overlap and, with no
+// quad folded, is one-to-one: roads cannot cross where they did not before (but for the straight
+// chords drawn between their nodes).
+void snap_tjunctions(const grid::Grid& grid, std::vector<XY>& positions);
+
 // Moves the free coordinates of folded quads' vertices halfway towards their orthogonal
-// neighbours' average, repeatedly; returns the iterations run. Grid method only.
+// neighbours' average, repeatedly, snapping T-junctions after each step; returns the iterations run. Grid method only.
 int relax_foldovers(const Prepared& p, std::vector<XY>& points, int max_iterations);
 
 }  // namespace tourmap::deform

@@ -5,8 +5,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <queue>
+#include <utility>
+#include <vector>
 
 namespace tourmap::test {
 namespace {
@@ -276,6 +280,115 @@ TEST_F(DeformApi, BadInputNamesTheField) {
   auto nan = http_request(live->port(), "POST", "/api/v1/deform/focus", {{"Content-Type", "application/json"}},
                           R"({"roads":"west-oakland","regions":[{"center":[NaN,1],"radius_m":1,"scale":2}]})");
   expect_error(nan, 400, "body");
+}
+
+// The client's three demo requests (a focus lens where the user first clicks, a mental map pulling
+// vertices onto a circle, a route pulled onto a straight sketch), as probes of the whole network:
+// by default no grid quad is left folded; asked for the raw solve (relax false), the same
+// requests fold quads on Monaco, so the default is what removes them.
+struct DemoRequests {
+  nlohmann::json focus, mental, destination;
+};
+
+DemoRequests demo_requests(const std::string& network, const nlohmann::json& topology) {
+  const auto& pos = topology["positions"];
+  const auto& ids = topology["node_ids"];
+  const std::size_t n = ids.size();
+  double x0 = 1e9, x1 = -1e9, y0 = 1e9, y1 = -1e9;
+  for (std::size_t i = 0; i < n; ++i) {
+    x0 = std::min(x0, pos[2 * i].get<double>()), x1 = std::max(x1, pos[2 * i].get<double>());
+    y0 = std::min(y0, pos[2 * i + 1].get<double>()), y1 = std::max(y1, pos[2 * i + 1].get<double>());
+  }
+  const double cx = (x0 + x1) / 2, cy = (y0 + y1) / 2;
+  const double mx = 111320 * std::cos(cy * M_PI / 180), my = 110540;  // metres per degree
+  const double w = (x1 - x0) * mx, h = (y1 - y0) * my;
+  auto xy = [&](std::size_t i) {
+    return std::pair{(pos[2 * i].get<double>() - cx) * mx, (pos[2 * i + 1].get<double>() - cy) * my};
+  };
+  auto lonlat = [&](double x, double y) { return nlohmann::json::array({cx + x / mx, cy + y / my}); };
+  std::vector<std::vector<std::pair<std::size_t, double>>> adj(n);
+  for (const auto& way : topology["ways"]) {
+    const auto& nodes = way["nodes"];
+    for (std::size_t k = 1; k < nodes.size(); ++k) {
+      auto a = nodes[k - 1].get<std::size_t>(), b = nodes[k].get<std::size_t>();
+      auto [ax, ay] = xy(a);
+      auto [bx, by] = xy(b);
+      adj[a].push_back({b, std::hypot(ax - bx, ay - by)});
+      adj[b].push_back({a, std::hypot(ax - bx, ay - by)});
+    }
+  }
+  auto nearest = [&](double x, double y, const std::vector<double>* reachable) {
+    std::size_t best = 0;
+    double best_d = 1e300;
+    for (std::size_t i = 0; i < n; ++i) {
+      if (adj[i].empty() || (reachable && (*reachable)[i] >= 1e300)) continue;
+      auto [px, py] = xy(i);
+      double d = std::hypot(px - x, py - y);
+      if (d < best_d) best_d = d, best = i;
+    }
+    return best;
+  };
+  const nlohmann::json common = {{"roads", network}, {"output", {{"roads", "none"}}}, {"check_crossings", true}};
+  DemoRequests out;
+  out.focus = common;
+  out.focus["regions"] = {{{"center", {cx, cy}}, {"radius_m", std::min(w, h) / 10}, {"scale", 3}}};
+  // 24 vertices near a circle (1.15 times its radius) pulled onto it.
+  const double r = 0.2 * std::min(w, h);
+  out.mental = common;
+  out.mental["guides"] = nlohmann::json::array();
+  std::vector<bool> used(n, false);
+  for (int k = 0; k < 24; ++k) {
+    const double a = 2 * M_PI * k / 24;
+    auto i = nearest(1.15 * r * std::cos(a), 1.15 * r * std::sin(a), nullptr);
+    if (used[i]) continue;
+    used[i] = true;
+    out.mental["guides"].push_back({{"vertex", ids[i]}, {"target", lonlat(r * std::cos(a), r * std::sin(a))}});
+  }
+  // The shortest route between points 30 % left and right of the centre, onto a straight line.
+  const auto s = nearest(-0.3 * w, -0.1 * h, nullptr);
+  std::vector<double> dist(n, 1e300);
+  std::vector<std::size_t> prev(n, n);
+  std::priority_queue<std::pair<double, std::size_t>, std::vector<std::pair<double, std::size_t>>, std::greater<>> queue;
+  dist[s] = 0;
+  queue.push({0, s});
+  while (!queue.empty()) {
+    auto [d, u] = queue.top();
+    queue.pop();
+    if (d > dist[u]) continue;
+    for (auto [v, len] : adj[u])
+      if (d + len < dist[v]) dist[v] = d + len, prev[v] = u, queue.push({dist[v], v});
+  }
+  const auto e = nearest(0.3 * w, 0.1 * h, &dist);
+  std::vector<std::int64_t> route;
+  for (auto v = e; v != n; v = prev[v]) route.insert(route.begin(), ids[v].get<std::int64_t>());
+  auto [sx, sy] = xy(s);
+  auto [ex, ey] = xy(e);
+  out.destination = common;
+  out.destination["route"] = route;
+  out.destination["sketch"] = {lonlat(sx, sy), lonlat(ex, ey)};
+  out.destination["simplify_m"] = 10;
+  return out;
+}
+
+TEST_F(DeformApi, DemoRequestsLeaveNoQuadFoldedByDefault) {
+  std::size_t raw_folds = 0;
+  for (const std::string network : {"west-oakland", "monaco"}) {
+    const auto topo = live->get_json("/api/v1/roads/" + network + "?format=topology");
+    const auto demo = demo_requests(network, topo);
+    for (const auto& [app, body] : {std::pair{"focus", demo.focus}, {"mental", demo.mental}, {"destination", demo.destination}}) {
+      const auto out = ok(app, body);
+      EXPECT_EQ(out["stats"]["foldovers"], 0) << network << " " << app << ": " << out["stats"].dump();
+      auto raw = body;
+      raw["relax"] = false;
+      const auto raw_out = ok(app, raw);
+      raw_folds += raw_out["stats"]["foldovers"].get<std::size_t>();
+      EXPECT_EQ(raw_out["stats"]["relax_iterations"], 0);
+      // What the relaxation costs: the residue may grow, within reason.
+      EXPECT_LT(out["stats"]["residue"].get<double>(), 3 * raw_out["stats"]["residue"].get<double>() + 1e-9)
+          << network << " " << app;
+    }
+  }
+  EXPECT_GT(raw_folds, 0u) << "the raw solves fold nothing: this test would not see a regression";
 }
 
 }  // namespace

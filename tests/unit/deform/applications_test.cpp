@@ -3,6 +3,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <set>
+
 namespace tourmap::deform {
 namespace {
 
@@ -64,6 +67,34 @@ TEST(Foldover, InvertedQuadsAndCrossings) {
   std::vector<XY> nodes = {{0, 0}, {2, 2}, {0, 2}, {2, 0}, {3, 3}};
   std::vector<std::pair<std::uint32_t, std::uint32_t>> edges = {{0, 1}, {2, 3}, {1, 4}};
   EXPECT_EQ(count_crossings(nodes, edges), 1u);  // the X; 0-1 and 1-4 only share node 1
+}
+
+TEST(Foldover, SnappedTJunctionsLeaveNoCrackAtAnyLevel) {
+  // Two special points refine the centre three levels deep: T-junctions at every level.
+  auto g = grid::build_adaptive({{0, 0}, 1.0, 4, 4}, {}, {{2.01, 2.01}, {1.99, 1.99}}, {4, 3, 1000});
+  std::set<int> levels;
+  for (const auto& t : g.tjunctions) {
+    levels.insert(g.quads[t.coarse_quad].level);
+    // No corner of a side holding a T-junction is a T-junction itself (why order does not matter).
+    for (const auto& u : g.tjunctions) {
+      EXPECT_NE(g.quads[t.coarse_quad].corners[t.side], u.vertex);
+      EXPECT_NE(g.quads[t.coarse_quad].corners[(t.side + 1) % 4], u.vertex);
+    }
+  }
+  EXPECT_EQ(levels.size(), 3u);
+  // A smooth but non-affine deformation, with every vertex jittered off it.
+  auto pos = g.vertices;
+  for (std::size_t i = 0; i < pos.size(); ++i) {
+    const auto [x, y] = pos[i];
+    pos[i] = {x + 0.1 * std::sin(y) + 0.01 * static_cast<double>(i % 7), y + 0.05 * x * x - 0.01 * static_cast<double>(i % 5)};
+  }
+  snap_tjunctions(g, pos);
+  for (const auto& t : g.tjunctions) {
+    const auto& c = g.quads[t.coarse_quad].corners;
+    const auto a = pos[c[t.side]], b = pos[c[(t.side + 1) % 4]];
+    EXPECT_NEAR(pos[t.vertex].x, (a.x + b.x) / 2, 1e-12);
+    EXPECT_NEAR(pos[t.vertex].y, (a.y + b.y) / 2, 1e-12);
+  }
 }
 
 TEST(Foldover, RelaxationUnfolds) {

@@ -50,6 +50,7 @@ export class OptionsPanel {
       h('option', { value: 'cg' }, 'Conjugate gradients'),
     );
     this.relax = h('input', { type: 'checkbox', 'data-testid': 'relax' });
+    this.relax.checked = true;  // the server's default too: no folded grid cell drawn
     this.showGrid = h('input', { type: 'checkbox', 'data-testid': 'show-grid' });
     this.showOriginal = h('input', { type: 'checkbox', 'data-testid': 'show-original' });
     const field = (labelText: string, input: HTMLElement, title?: string) =>
