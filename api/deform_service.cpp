@@ -55,11 +55,6 @@ std::string weights_key(const deform::Weights& w) {
 
 bool DeformNetwork::has_edge(std::uint32_t a, std::uint32_t b) const { return edge_keys.count(edge_key(a, b)) != 0; }
 
-std::size_t DeformNetwork::rest_crossings() const {
-  std::call_once(crossings_once_, [this] { crossings_ = deform::count_crossings(planar.nodes, planar.edges); });
-  return crossings_;
-}
-
 std::size_t DeformNetwork::memory_bytes() const {
   // Vectors by capacity; hash tables at ~48 bytes a node (key, value, next pointer, bucket);
   // the R-tree index at ~48 bytes a point.
@@ -252,6 +247,8 @@ nlohmann::json stats_json(const DeformRequest& r, const DeformNetwork& net, cons
           {"foldovers", result.inverted_quads},
           {"crossings_added", result.crossings_added ? nlohmann::json(*result.crossings_added) : nlohmann::json(nullptr)},
           {"relax_iterations", result.relax_iterations},
+          {"untangle_steps", result.untangle_steps},
+          {"untangle_left", result.untangle_left},
           {"cache", prepared_hit ? "hit" : "miss"},
           {"assembly_ms", prepared_hit ? 0.0 : p.assembly_ms},
           {"factor_ms", s.factor_ms},
@@ -302,9 +299,7 @@ Response DeformService::handle(DeformApp app, const Request& req) {
   options.solve.time_limit_ms = r.time_limit_ms;
   options.relax = r.relax;
   options.count_crossings = r.check_crossings;
-  std::optional<std::size_t> rest_crossings;
-  if (r.check_crossings) rest_crossings = net->rest_crossings();
-  auto result = deform::run(*prepared, net->planar, targets, options, rest_crossings);
+  auto result = deform::run(*prepared, net->planar, targets, options);
   // The first Cholesky solve factorized: the cache charges the factor's bytes from now on.
   if (result.solve.kind == deform::SolverKind::cholesky && !result.solve.factor_cached)
     prepared_.put(prepared_key, prepared, prepared->memory_bytes());

@@ -36,12 +36,7 @@ struct DeformNetwork {
   deform::FastUnproject unproject;  // map units -> lon/lat over the map and a 25% margin
 
   bool has_edge(std::uint32_t a, std::uint32_t b) const;
-  std::size_t rest_crossings() const;  // computed once
   std::size_t memory_bytes() const;    // approximate, for the cache budget (the shared entry excluded)
-
- private:
-  mutable std::once_flag crossings_once_;
-  mutable std::size_t crossings_ = 0;
 };
 
 class DeformService {

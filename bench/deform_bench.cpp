@@ -151,7 +151,7 @@ struct Row {
   std::size_t foldovers = 0, crossings = 0;
 };
 
-Row measure(const Method& m, const PlanarNetwork& net, const Targets& t, int repeats, std::size_t rest_crossings) {
+Row measure(const Method& m, const PlanarNetwork& net, const Targets& t, int repeats) {
   Row row;
   row.method = m.name;
   std::vector<double> assembly, first, resolve, cg;
@@ -185,20 +185,18 @@ Row measure(const Method& m, const PlanarNetwork& net, const Targets& t, int rep
   row.cg = median(cg);
   row.residue = last.residue;
   row.foldovers = last.inverted_quads;
-  auto after = count_crossings(last.nodes, net.edges);
-  row.crossings = after > rest_crossings ? after - rest_crossings : 0;
+  row.crossings = count_added_crossings(net, last.nodes);
   return row;
 }
 
 void print_methods(const std::string& title, const std::string& network, const PlanarNetwork& net, const Targets& t,
                    int repeats) {
-  auto rest_crossings = count_crossings(net.nodes, net.edges);
   std::printf("\n### %s: %s (%zu road edges, %zu nodes; residue at rest %.1f)\n\n", title.c_str(), network.c_str(),
               net.edges.size(), net.nodes.size(), residue(net, t, net.nodes));
   std::printf("| method | unknowns | quads | grid edges | assembly ms | Cholesky first ms | re-solve ms | CG ms (iters) | residue | first vs u80 | residue vs u80 | foldovers | crossings added |\n");
   std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   std::vector<Row> rows;
-  for (const auto& m : kMethods) rows.push_back(measure(m, net, t, repeats, rest_crossings));
+  for (const auto& m : kMethods) rows.push_back(measure(m, net, t, repeats));
   const Row& u80 = rows[3];
   for (const auto& r : rows)
     std::printf("| %s | %zu | %zu | %zu | %.1f | %.1f | %.2f | %.1f (%d%s) | %.1f | %.2fx | %.3f | %zu | %zu |\n",
@@ -220,10 +218,9 @@ void print_scaling(const std::vector<std::pair<std::string, PlanarNetwork>>& net
   std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   for (const auto& [name, net] : nets) {
     auto t = focus_workload(net);
-    auto rc = count_crossings(net.nodes, net.edges);
-    auto a = measure(kMethods[6], net, t, repeats, rc);
-    auto u = measure(kMethods[3], net, t, repeats, rc);
-    auto e = measure(kMethods[0], net, t, repeats, rc);
+    auto a = measure(kMethods[6], net, t, repeats);
+    auto u = measure(kMethods[3], net, t, repeats);
+    auto e = measure(kMethods[0], net, t, repeats);
     std::printf("| %s | %zu | %zu | %.1f | %.2f | %.1f | %.1f | %.1f | %.1f |\n", name.c_str(), net.edges.size(),
                 a.unknowns, a.first, a.resolve, a.cg, u.first, e.first, e.cg);
   }
@@ -290,7 +287,6 @@ void print_foldovers(const std::vector<std::pair<std::string, PlanarNetwork>>& n
   std::printf("| network | application | raw folds | raw crossings | snapped folds | snapped crossings | default folds | default crossings | relax steps | residue raw | residue default | default vs raw | re-solve ms raw | re-solve ms default |\n");
   std::printf("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   for (const auto& [name, net] : nets) {
-    const auto rest = count_crossings(net.nodes, net.edges);
     const std::pair<const char*, Targets> apps[] = {
         {"focus", focus_workload(net)}, {"mental", mental_workload(net)}, {"destination", destination_workload(net)}};
     for (const auto& [app, t] : apps) {
@@ -303,8 +299,7 @@ void print_foldovers(const std::vector<std::pair<std::string, PlanarNetwork>>& n
         auto start = Clock::now();
         auto r = run(p, net, t, o);
         const double ms = ms_since(start);
-        const auto after = count_crossings(r.nodes, net.edges);
-        return std::tuple{r, ms, after > rest ? after - rest : 0};
+        return std::tuple{r, ms, count_added_crossings(net, r.nodes)};
       };
       auto [r0, ms0, c0] = timed(raw);
       auto [r1, ms1, c1] = timed(snapped);

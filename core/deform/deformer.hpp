@@ -1,6 +1,7 @@
 #pragma once
 // One deformation run on a prepared system: right-hand side for the request's targets, solve,
-// place the road nodes, measure residue and foldovers, optionally relax.
+// place the road nodes, measure residue and foldovers; by default relax fold-overs and the
+// crossings the drawn chords added.
 
 #include "deform/foldover.hpp"
 #include "deform/solver.hpp"
@@ -13,6 +14,8 @@ struct RunOptions {
   SolveOptions solve;
   bool relax = true;              // run the foldover relaxation step (4.4.2) when a quad folded
   int relax_iterations = 100;
+  bool untangle = true;           // with relax: smooth away road crossings the chords added (deform/untangle.hpp)
+  int untangle_steps = 60;
   bool snap_tjunctions = true;    // off only to measure what it changes (bench/deform_bench)
   bool count_crossings = false;   // road edge crossings added by the deformation (costly on big maps)
 };
@@ -27,10 +30,10 @@ struct RunResult {
   std::size_t inverted_quads = 0;
   std::optional<std::size_t> crossings_added;
   int relax_iterations = 0;
+  int untangle_steps = 0;          // smoothing steps against added crossings
+  std::size_t untangle_left = 0;   // new crossing pairs left when the steps ran out
 };
 
-// `rest_crossings` (crossings of the undeformed network) is needed when counting crossings.
-RunResult run(Prepared& p, const PlanarNetwork& net, const Targets& targets, const RunOptions& options,
-              std::optional<std::size_t> rest_crossings = std::nullopt);
+RunResult run(Prepared& p, const PlanarNetwork& net, const Targets& targets, const RunOptions& options);
 
 }  // namespace tourmap::deform

@@ -24,6 +24,22 @@ std::size_t count_crossings(const std::vector<XY>& nodes, const std::vector<std:
 // chords drawn between their nodes).
 void snap_tjunctions(const grid::Grid& grid, std::vector<XY>& positions);
 
+// One smoothing step: each of `vertices` moves its free coordinates halfway towards its
+// orthogonal neighbours' average (keeping its rest offset from it); then T-junctions are snapped.
+void smooth_vertices(const Prepared& p, std::vector<XY>& points, const std::vector<std::uint32_t>& vertices);
+
+// Two roads closer at rest than this (half a metre, in map units: closer than OSM positions can
+// tell apart, e.g. a side road that ends 10 cm short of the road it joins) are taken as
+// touching: a deformation that makes them cross has not added a crossing.
+double touching_distance(const PlanarNetwork& net);
+
+// Pairs of road edges without a shared node that cross at `nodes` but neither crossed nor touched
+// at `rest` (CGAL box intersection + exact segment predicates).
+std::size_t count_added_crossings(const PlanarNetwork& net, const std::vector<XY>& nodes);
+
+// Distance between two segments (0 when they meet).
+double segment_distance(XY a, XY b, XY c, XY d);
+
 // Moves the free coordinates of folded quads' vertices halfway towards their orthogonal
 // neighbours' average, repeatedly, snapping T-junctions after each step; returns the iterations run. Grid method only.
 int relax_foldovers(const Prepared& p, std::vector<XY>& points, int max_iterations);

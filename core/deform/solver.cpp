@@ -54,7 +54,9 @@ std::size_t Prepared::memory_bytes() const {
     bytes += vector_bytes(g.vertices) + g.on_boundary.capacity() / 8 + vector_bytes(g.neighbors) +
              vector_bytes(g.quads) + vector_bytes(g.tjunctions) + vector_bytes(g.cell_quad);
   }
-  bytes += vector_bytes(embeddings) + vector_bytes(rest) + vector_bytes(column) + vector_bytes(guide_nodes);
+  bytes += vector_bytes(embeddings) + vector_bytes(edge_samples.start) + vector_bytes(edge_samples.samples) + vector_bytes(edge_samples.clearance) + vector_bytes(edge_samples.quad_edges_start) +
+             vector_bytes(edge_samples.quad_edges) + vector_bytes(edge_samples.vertex_quads_start) +
+             vector_bytes(edge_samples.vertex_quads) + vector_bytes(rest) + vector_bytes(column) + vector_bytes(guide_nodes);
   bytes += sparse_bytes(system.A) + sparse_bytes(normal);
   bytes += static_cast<std::size_t>(system.fixed_part.size() + system.base_target.size() + rest_unknowns.size()) *
            sizeof(double);

@@ -1,4 +1,5 @@
 #include "deform/system.hpp"
+#include "deform/untangle.hpp"
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Convex_hull_traits_adapter_2.h>
@@ -210,6 +211,7 @@ Prepared prepare_grid(const PlanarNetwork& net, grid::Grid g, const std::vector<
 
   p.embeddings.reserve(net.nodes.size());
   for (const auto& node : net.nodes) p.embeddings.push_back(grid::embed(g, node));
+  p.edge_samples = sample_edges(g, net);
 
   SystemBuilder b(p.rest, p.column);
   p.system.road_scale = std::sqrt(w.road);

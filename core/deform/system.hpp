@@ -35,10 +35,20 @@ enum class Method { grid, edges };
 
 // Everything about a deformation that does not change while the user drags: the grid and the
 // road embedding, the system matrix, its normal matrix and (lazily) its Cholesky factorization.
+// Interior sample points of every road edge, embedded in the rest grid (deform/untangle.hpp).
+struct EdgeSamples {
+  std::vector<std::uint32_t> start;        // per edge: its first sample; start[edges] = total
+  std::vector<grid::Embedding> samples;
+  std::vector<float> clearance;            // per edge: rest distance to the nearest other road (capped)
+  // Incidence, CSR: the edges with an endpoint or sample in each quad, the quads at each vertex.
+  std::vector<std::uint32_t> quad_edges_start, quad_edges, vertex_quads_start, vertex_quads;
+};
+
 struct Prepared {
   Method method = Method::grid;
   std::optional<grid::Grid> grid;             // Method::grid only
   std::vector<grid::Embedding> embeddings;    // per road node, Method::grid only
+  EdgeSamples edge_samples;                   // per road edge, Method::grid only
   std::vector<XY> rest;                       // points at rest: grid vertices, or road nodes
   std::vector<std::array<int, 2>> column;     // per point and axis: unknown index, or -1 if fixed
   std::vector<std::uint32_t> guide_nodes;     // the guide set the rows were built for

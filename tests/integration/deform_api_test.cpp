@@ -284,8 +284,9 @@ TEST_F(DeformApi, BadInputNamesTheField) {
 
 // The client's three demo requests (a focus lens where the user first clicks, a mental map pulling
 // vertices onto a circle, a route pulled onto a straight sketch), as probes of the whole network:
-// by default no grid quad is left folded; asked for the raw solve (relax false), the same
-// requests fold quads on Monaco, so the default is what removes them.
+// by default no grid quad is left folded and no road crosses another it did not cross; asked
+// for the raw solve (relax false), the same requests fold quads and add crossings on Monaco, so
+// the default is what removes them.
 struct DemoRequests {
   nlohmann::json focus, mental, destination;
 };
@@ -370,25 +371,29 @@ DemoRequests demo_requests(const std::string& network, const nlohmann::json& top
   return out;
 }
 
-TEST_F(DeformApi, DemoRequestsLeaveNoQuadFoldedByDefault) {
-  std::size_t raw_folds = 0;
+TEST_F(DeformApi, DemoRequestsFoldNothingAndAddNoCrossingByDefault) {
+  std::size_t raw_folds = 0, raw_crossings = 0;
   for (const std::string network : {"west-oakland", "monaco"}) {
     const auto topo = live->get_json("/api/v1/roads/" + network + "?format=topology");
     const auto demo = demo_requests(network, topo);
     for (const auto& [app, body] : {std::pair{"focus", demo.focus}, {"mental", demo.mental}, {"destination", demo.destination}}) {
       const auto out = ok(app, body);
       EXPECT_EQ(out["stats"]["foldovers"], 0) << network << " " << app << ": " << out["stats"].dump();
+      EXPECT_EQ(out["stats"]["crossings_added"], 0) << network << " " << app << ": " << out["stats"].dump();
       auto raw = body;
       raw["relax"] = false;
       const auto raw_out = ok(app, raw);
       raw_folds += raw_out["stats"]["foldovers"].get<std::size_t>();
+      raw_crossings += raw_out["stats"]["crossings_added"].get<std::size_t>();
       EXPECT_EQ(raw_out["stats"]["relax_iterations"], 0);
+      EXPECT_EQ(raw_out["stats"]["untangle_steps"], 0);
       // What the relaxation costs: the residue may grow, within reason.
       EXPECT_LT(out["stats"]["residue"].get<double>(), 3 * raw_out["stats"]["residue"].get<double>() + 1e-9)
           << network << " " << app;
     }
   }
   EXPECT_GT(raw_folds, 0u) << "the raw solves fold nothing: this test would not see a regression";
+  EXPECT_GT(raw_crossings, 0u) << "the raw solves add no crossing: this test would not see a regression";
 }
 
 }  // namespace
