@@ -60,7 +60,7 @@ std::size_t count_crossings(const std::vector<XY>& nodes,
 }
 
 double touching_distance(const PlanarNetwork& net) {
-  constexpr double kTouchingMetres = 0.5;  // below what OSM positions can tell apart
+  constexpr double kTouchingMetres = 2.0;  // less than a lane: the two roads' surfaces overlap
   return kTouchingMetres / (net.transform.metres_per_unit > 0 ? net.transform.metres_per_unit : 1.0);
 }
 

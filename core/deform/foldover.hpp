@@ -28,9 +28,10 @@ void snap_tjunctions(const grid::Grid& grid, std::vector<XY>& positions);
 // orthogonal neighbours' average (keeping its rest offset from it); then T-junctions are snapped.
 void smooth_vertices(const Prepared& p, std::vector<XY>& points, const std::vector<std::uint32_t>& vertices);
 
-// Two roads closer at rest than this (half a metre, in map units: closer than OSM positions can
-// tell apart, e.g. a side road that ends 10 cm short of the road it joins) are taken as
-// touching: a deformation that makes them cross has not added a crossing.
+// Two roads closer at rest than this (2 m, in map units) are taken as touching: their centre
+// lines are less than a lane apart, so the roads themselves overlap (in OSM: a side road whose
+// last node stops a metre short of the road it joins, a slip road along its carriageway), and a
+// deformation that makes their lines cross has not added a crossing.
 double touching_distance(const PlanarNetwork& net);
 
 // Pairs of road edges without a shared node that cross at `nodes` but neither crossed nor touched

@@ -10,7 +10,7 @@
 // d apart at rest stay about sigma * d apart (sigma: the grid's least stretch around them), so
 // only an edge whose chord strays from its samples by a good share of sigma * clearance is a
 // suspect; suspects are tested against the chords around them (CGAL box intersection + exact
-// segment predicates), and a pair that crosses now but neither crossed nor touched at rest
+// segment predicates), and a pair that crosses now but neither crossed nor touched at rest (foldover.hpp)
 // makes the quads under both edges smoother (their vertices' displacements halfway to their
 // neighbours' average; rings around them join every few steps), until no such pair is left or
 // the step cap is hit. The suspect filter is a bound, not a proof: count_added_crossings

@@ -21,7 +21,7 @@ Bent bent_network() {
   b.net.edges = {{0, 1}, {2, 3}};
   b.net.min = {0.1, 0.7};
   b.net.max = {3.9, 1.0};
-  b.net.transform.metres_per_unit = 100;  // "touching" is then 0.005 units: the roads are apart
+  b.net.transform.metres_per_unit = 100;  // "touching" (2 m) is then 0.02 units: the roads are apart
   b.p = prepare_grid(b.net, grid::build_uniform({{0, 0}, 1.0, 4, 2}), {}, Weights{}, Boundary::fixed);
   b.points = b.p.rest;
   for (auto& v : b.points)
@@ -66,7 +66,7 @@ TEST(Untangle, ReportsWhatIsLeftWhenTheStepsRunOut) {
   EXPECT_EQ(report.left, 1u);
 }
 
-TEST(Untangle, RoadsCloserThanOsmCanTellCountAsTouching) {
+TEST(Untangle, RoadsLessThanALaneApartCountAsTouching) {
   auto b = bent_network();
   b.net.transform.metres_per_unit = 1;  // the 0.05 gap is now 5 cm: they touched at rest
   EXPECT_EQ(count_added_crossings(b.net, road_nodes_from(b.p, b.points)), 0u);
