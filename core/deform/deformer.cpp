@@ -23,19 +23,20 @@ RunResult run(Prepared& p, const PlanarNetwork& net, const Targets& targets, con
     r.inverted_quads = count_inverted_quads(*p.grid, r.points);
     // Unfold, then take the crossings out; smoothing against crossings could fold a quad again
     // (it never did on the shared extracts), hence a few rounds.
+    const auto until = Clock::now() + std::chrono::microseconds(static_cast<long long>(options.correction_budget_ms * 1000));
     for (int round = 0; options.relax && round < 3; ++round) {
       if (r.inverted_quads > 0) {
-        r.relax_iterations += relax_foldovers(p, r.points, options.relax_iterations);
+        r.relax_iterations += relax_foldovers(p, r.points, options.relax_iterations, until);
         r.inverted_quads = count_inverted_quads(*p.grid, r.points);
       }
       if (!options.untangle) break;
       std::vector<XY> nodes;
-      const auto u = untangle_crossings(p, net, r.points, nodes, options.untangle_steps);
+      const auto u = untangle_crossings(p, net, r.points, nodes, options.untangle_steps, until);
       r.untangle_steps += u.steps;
       r.untangle_left = u.left;
       if (u.steps == 0) break;
       r.inverted_quads = count_inverted_quads(*p.grid, r.points);
-      if (r.inverted_quads == 0) break;
+      if (r.inverted_quads == 0 || Clock::now() >= until) break;
     }
   }
   r.nodes = road_nodes_from(p, r.points);

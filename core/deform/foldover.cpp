@@ -144,11 +144,12 @@ void smooth_vertices(const Prepared& p, std::vector<XY>& points, const std::vect
   snap_tjunctions(g, points);
 }
 
-int relax_foldovers(const Prepared& p, std::vector<XY>& points, int max_iterations) {
+int relax_foldovers(const Prepared& p, std::vector<XY>& points, int max_iterations,
+                    std::chrono::steady_clock::time_point until) {
   if (p.method != Method::grid || !p.grid) return 0;
   const auto& g = *p.grid;
   int it = 0;
-  for (; it < max_iterations; ++it) {
+  for (; it < max_iterations && std::chrono::steady_clock::now() < until; ++it) {
     util::check_stop();
     auto folded = folded_quads(g, points);
     if (folded.empty()) break;

@@ -5,6 +5,7 @@
 
 #include "deform/system.hpp"
 
+#include <chrono>
 #include <cstddef>
 
 namespace tourmap::deform {
@@ -43,6 +44,8 @@ double segment_distance(XY a, XY b, XY c, XY d);
 
 // Moves the free coordinates of folded quads' vertices halfway towards their orthogonal
 // neighbours' average, repeatedly, snapping T-junctions after each step; returns the iterations run. Grid method only.
-int relax_foldovers(const Prepared& p, std::vector<XY>& points, int max_iterations);
+// Stops early, too, at `until`.
+int relax_foldovers(const Prepared& p, std::vector<XY>& points, int max_iterations,
+                    std::chrono::steady_clock::time_point until = std::chrono::steady_clock::time_point::max());
 
 }  // namespace tourmap::deform

@@ -134,7 +134,7 @@ EdgeSamples sample_edges(const grid::Grid& g, const PlanarNetwork& net) {
 }
 
 UntangleReport untangle_crossings(const Prepared& p, const PlanarNetwork& net, std::vector<XY>& points,
-                                  std::vector<XY>& nodes, int max_steps) {
+                                  std::vector<XY>& nodes, int max_steps, std::chrono::steady_clock::time_point until) {
   UntangleReport report;
   const auto& s = p.edge_samples;
   if (p.method != Method::grid || !p.grid || s.start.size() != net.edges.size() + 1) return report;
@@ -237,7 +237,7 @@ UntangleReport untangle_crossings(const Prepared& p, const PlanarNetwork& net, s
                                pairs.emplace_back(e, f);
                              });
     if (pairs.empty()) break;
-    if (report.steps >= max_steps) {
+    if (report.steps >= max_steps || std::chrono::steady_clock::now() >= until) {
       report.left = pairs.size();
       break;
     }

@@ -19,6 +19,7 @@
 
 #include "deform/system.hpp"
 
+#include <chrono>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -37,7 +38,8 @@ struct UntangleReport {
 };
 
 // Smooths `points` (grid vertices) until the chords of the road edges cross no pair that did not
-// cross at rest, or `max_steps` is hit; `nodes` is updated to the deformed road nodes.
-UntangleReport untangle_crossings(const Prepared& p, const PlanarNetwork& net, std::vector<XY>& points, std::vector<XY>& nodes, int max_steps);
+// cross at rest, or `max_steps` is hit, or the clock reaches `until`; `nodes` is updated to the deformed road nodes.
+UntangleReport untangle_crossings(const Prepared& p, const PlanarNetwork& net, std::vector<XY>& points, std::vector<XY>& nodes, int max_steps,
+                                  std::chrono::steady_clock::time_point until = std::chrono::steady_clock::time_point::max());
 
 }  // namespace tourmap::deform

@@ -22,7 +22,7 @@ import { join, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { bin, check, checkNoConsoleErrors, openApp, openPage, runTest, serveSampleData, STEP_TIMEOUT_MS } from './support.mjs';
 
-const OVERALL_TIMEOUT_MS = 240_000;
+const OVERALL_TIMEOUT_MS = 330_000;
 /** As support.mjs finds the sample data (TOURMAP_DATA_DIR, else ../shared/data next to the repository). */
 const dataDir = resolve(process.env.TOURMAP_DATA_DIR ?? fileURLToPath(new URL('../../../shared/data', import.meta.url)));
 const CITY = 'freiburg';
@@ -32,7 +32,9 @@ const SIZES = [
   { name: 'phone', width: 390, height: 844 },
 ];
 /** How long the server may take to improve the layout (about 7 s when idle). */
-const IMPROVEMENT_TIMEOUT_MS = 90_000;  // a nice-10 job beside other tests gets little CPU
+// A nice-10 job beside other tests gets little CPU: a clean-clone CI run, with e2e_crowd_view
+// rendering beside it and another build on the machine, saw none within 90 s.
+const IMPROVEMENT_TIMEOUT_MS = 150_000;
 /** How often the server looks for imports (server/server.cpp, EventHub). */
 const CATALOG_POLL_MS = 2000;
 
