@@ -18,10 +18,10 @@ using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Box = CGAL::Box_intersection_d::Box_with_handle_d<double, 2, std::size_t, CGAL::Box_intersection_d::ID_EXPLICIT>;
 
 constexpr std::uint32_t kMaxSamples = 16;
-// Two roads d apart at rest are at least sigma * d apart deformed, sigma the smallest singular
+// Two roads d apart at rest stay about sigma * d apart deformed, sigma the smallest singular
 // value of the grid's Jacobian around them, so their chords can only cross when one strays
-// from its road by half of that; an edge is examined from a quarter of it on (a margin for
-// sigma varying between the two).
+// from its road by about half of that; an edge is examined from a quarter of it on (a margin
+// for sigma varying between the two). A bound, not a proof: count_added_crossings is exact.
 constexpr double kStrayShare = 0.25;
 // Clearance is searched this share of the quad around an edge's middle far (further costs the
 // search more than it saves: an edge past it is examined a little early).
