@@ -31,12 +31,11 @@ std::vector<std::uint32_t> folded_quads(const grid::Grid& g, const std::vector<X
   return out;
 }
 
-}  // namespace
-
-std::size_t count_inverted_quads(const grid::Grid& g, const std::vector<XY>& pos) { return folded_quads(g, pos).size(); }
-
-std::size_t count_crossings(const std::vector<XY>& nodes,
-                            const std::vector<std::pair<std::uint32_t, std::uint32_t>>& edges) {
+// Every pair of edges without a shared node whose segments at `nodes` meet, handed to
+// f(a0, a1, b0, b1) (CGAL box intersection + exact segment predicates).
+template <class F>
+void for_each_crossing(const std::vector<XY>& nodes, const std::vector<std::pair<std::uint32_t, std::uint32_t>>& edges,
+                       F&& f) {
   using Box = CGAL::Box_intersection_d::Box_with_handle_d<double, 2, std::size_t, CGAL::Box_intersection_d::ID_EXPLICIT>;
   std::vector<Box> boxes;
   boxes.reserve(edges.size());
@@ -46,16 +45,24 @@ std::size_t count_crossings(const std::vector<XY>& nodes,
     double lo[2] = {std::min(a.x, b.x), std::min(a.y, b.y)}, hi[2] = {std::max(a.x, b.x), std::max(a.y, b.y)};
     boxes.emplace_back(lo, hi, i);
   }
-  std::size_t crossings = 0;
-  auto check = [&](const Box& x, const Box& y) {
-    auto [a0, a1] = edges[x.handle()];
-    auto [b0, b1] = edges[y.handle()];
+  CGAL::box_self_intersection_d(boxes.begin(), boxes.end(), [&](const Box& x, const Box& y) {
+    const auto [a0, a1] = edges[x.handle()];
+    const auto [b0, b1] = edges[y.handle()];
     if (a0 == b0 || a0 == b1 || a1 == b0 || a1 == b1) return;  // adjacent edges meet at their node
     Kernel::Segment_2 s(Point(nodes[a0].x, nodes[a0].y), Point(nodes[a1].x, nodes[a1].y));
     Kernel::Segment_2 t(Point(nodes[b0].x, nodes[b0].y), Point(nodes[b1].x, nodes[b1].y));
-    if (CGAL::do_intersect(s, t)) ++crossings;
-  };
-  CGAL::box_self_intersection_d(boxes.begin(), boxes.end(), check);
+    if (CGAL::do_intersect(s, t)) f(a0, a1, b0, b1);
+  });
+}
+
+}  // namespace
+
+std::size_t count_inverted_quads(const grid::Grid& g, const std::vector<XY>& pos) { return folded_quads(g, pos).size(); }
+
+std::size_t count_crossings(const std::vector<XY>& nodes,
+                            const std::vector<std::pair<std::uint32_t, std::uint32_t>>& edges) {
+  std::size_t crossings = 0;
+  for_each_crossing(nodes, edges, [&](std::uint32_t, std::uint32_t, std::uint32_t, std::uint32_t) { ++crossings; });
   return crossings;
 }
 
@@ -75,27 +82,10 @@ double segment_distance(XY a, XY b, XY c, XY d) {
 }
 
 std::size_t count_added_crossings(const PlanarNetwork& net, const std::vector<XY>& nodes) {
-  using Box = CGAL::Box_intersection_d::Box_with_handle_d<double, 2, std::size_t, CGAL::Box_intersection_d::ID_EXPLICIT>;
-  const auto& edges = net.edges;
   const double touching = touching_distance(net);
-  std::vector<Box> boxes;
-  boxes.reserve(edges.size());
-  for (std::size_t i = 0; i < edges.size(); ++i) {
-    const auto& a = nodes[edges[i].first];
-    const auto& b = nodes[edges[i].second];
-    double lo[2] = {std::min(a.x, b.x), std::min(a.y, b.y)}, hi[2] = {std::max(a.x, b.x), std::max(a.y, b.y)};
-    boxes.emplace_back(lo, hi, i);
-  }
   std::size_t added = 0;
-  CGAL::box_self_intersection_d(boxes.begin(), boxes.end(), [&](const Box& x, const Box& y) {
-    const auto [a0, a1] = edges[x.handle()];
-    const auto [b0, b1] = edges[y.handle()];
-    if (a0 == b0 || a0 == b1 || a1 == b0 || a1 == b1) return;
-    Kernel::Segment_2 s(Point(nodes[a0].x, nodes[a0].y), Point(nodes[a1].x, nodes[a1].y));
-    Kernel::Segment_2 t(Point(nodes[b0].x, nodes[b0].y), Point(nodes[b1].x, nodes[b1].y));
-    if (!CGAL::do_intersect(s, t)) return;
-    if (segment_distance(net.nodes[a0], net.nodes[a1], net.nodes[b0], net.nodes[b1]) <= touching) return;
-    ++added;
+  for_each_crossing(nodes, net.edges, [&](std::uint32_t a0, std::uint32_t a1, std::uint32_t b0, std::uint32_t b1) {
+    if (segment_distance(net.nodes[a0], net.nodes[a1], net.nodes[b0], net.nodes[b1]) > touching) ++added;
   });
   return added;
 }
