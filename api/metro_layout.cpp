@@ -13,7 +13,7 @@
 namespace tourmap::api {
 namespace {
 
-constexpr int kLayoutVersion = 16;  // 6: bend reduction, quality.compare (the metric tool's figures); 7: clearance in the bend reduction; 8: detour limit in the router, spacing with cuts, mm coordinates, line order; 9: names on leaders; 10: bends by rounds, names apart between zooms; 11: MIP improvements only as better maps; 12: room for names, symbols 12 px at 75 px; 13: longer leaders, names kept between room rounds; 14: smaller type as the last resort; 15: room for one name at a time; 16: several names moved at once where one is left out
+constexpr int kLayoutVersion = 17;  // 6: bend reduction, quality.compare (the metric tool's figures); 7: clearance in the bend reduction; 8: detour limit in the router, spacing with cuts, mm coordinates, line order; 9: names on leaders; 10: bends by rounds, names apart between zooms; 11: MIP improvements only as better maps; 12: room for names, symbols 12 px at 75 px; 13: longer leaders, names kept between room rounds; 14: smaller type as the last resort; 15: room for one name at a time; 16: several names moved at once where one is left out; 17: room for one name with a wider reach
 using util::Clock;
 using util::ms_since;
 

@@ -134,7 +134,10 @@ void make_room_for_names(const LayoutGraph& g, Layout& layout, const StationLabe
     keep(*best);
   }
   // Then one name at a time, each in the places that need the least room (the one the rounds
-  // asked for may be blocked where another is not), the names around it free to move.
+  // asked for may be blocked where another is not): points within 10 mean edges move, then
+  // within 20, first with the names around it free to move, then with them kept clear (London:
+  // Leicester Square's second place needed the wider reach with the names around it kept, 301
+  // -> 302 of 302 named at 75 px, with and without POIs, with visual-worth and uniform lengths).
   std::vector<std::uint32_t> left;
   for (const auto& l : out.labels[first].wanted)
     if (std::find(left.begin(), left.end(), l.node) == left.end()) left.push_back(l.node);
@@ -142,19 +145,25 @@ void make_room_for_names(const LayoutGraph& g, Layout& layout, const StationLabe
     std::vector<PlacedLabel> places;
     for (const auto& l : out.labels[first].alternatives)
       if (l.node == v) places.push_back(l);
+    constexpr std::pair<double, bool> kSingleTries[] = {{10.0, false}, {20.0, false}, {10.0, true}, {20.0, true}};
     for (const auto& place : places) {
-      if (used_ms() >= budget_ms) {
-        report.status = "no_time";
-        break;
+      bool named = false;
+      for (const auto& [radius, keep_placed] : kSingleTries) {
+        if (used_ms() >= budget_ms) {
+          report.status = "no_time";
+          break;
+        }
+        ++report.single_tries;
+        auto before = out.labels;
+        before[first].wanted = {place};
+        auto t = try_rooms({place}, before, radius, keep_placed);
+        if (t && t->unnamed < unnamed_from(out.labels, first)) {
+          keep(*t);
+          named = true;
+          break;
+        }
       }
-      ++report.single_tries;
-      auto before = out.labels;
-      before[first].wanted = {place};
-      auto t = try_rooms({place}, before, 10.0, false);
-      if (t && t->unnamed < unnamed_from(out.labels, first)) {
-        keep(*t);
-        break;
-      }
+      if (named || report.status == "no_time") break;
     }
     if (report.status == "no_time") break;
   }

@@ -213,6 +213,7 @@ TEST(LayoutImprovement, LondonGetsRoomForNamesInTheBackground) {
   const auto [named, unnamed] = named_at_ring_zoom(improved);
   EXPECT_EQ(room["unnamed_after"].get<std::size_t>(), unnamed);
   EXPECT_LT(unnamed, room["unnamed_before"].get<std::size_t>());
+  EXPECT_EQ(unnamed, 0u) << room;  // issue 14: every station named where symbols are 12 px across
   EXPECT_EQ(named + unnamed, fast_named + fast_unnamed);  // the same stations
   // Each name's type size: the usual one, or the smaller one from 75 px on, as counted.
   const auto& font = improved["labels"]["font"];
