@@ -4,7 +4,8 @@
 // window the page asked about), zooming in and panning change them, a cluster marker opens its
 // representative's details, and the Octilinear switch morphs the map into the layout (every
 // edge segment on screen horizontal, vertical or diagonal within 1 degree, every station drawn,
-// clusters asked for in layout space).
+// clusters asked for in layout space), and no cluster marker stands on a station symbol there or
+// in London's dense centre.
 //
 // Vienna's POI photos (on wien.gv.at) are answered with a local picture (support.mjs's
 // openPage), so the test needs no internet.
@@ -53,6 +54,23 @@ async function waitForClusters(page, after) {
     if (again.requests === state.requests && again.status === 'ready') return again;
     state = again;
   }
+}
+
+/** Cluster markers (their heads or photos) drawn over a station symbol, as "marker id/station rect". */
+async function markersOverStations(page) {
+  return page.evaluate(() => {
+    const rect = (element) => element.getBoundingClientRect();
+    const stations = [...document.querySelectorAll('.station-symbol')].map(rect).filter((r) => r.width > 0);
+    const hits = [];
+    for (const marker of document.querySelectorAll('.cluster-marker')) {
+      for (const head of marker.querySelectorAll('.cluster-head, .cluster-frame')) {
+        const m = rect(head);
+        const over = stations.find((r) => r.left < m.right && m.left < r.right && r.top < m.bottom && m.top < r.bottom);
+        if (over) hits.push(`${marker.getAttribute('data-id')} at ${Math.round(m.left)},${Math.round(m.top)}`);
+      }
+    }
+    return hits;
+  });
 }
 
 /** The clusters drawn are the ones the API gives for the window the page asked about. */
@@ -192,6 +210,21 @@ async function run(state) {
   check(layoutClusters.space === 'layout', `octilinear clusters are in ${layoutClusters.space} space`);
   await checkAgainstApi(baseUrl, layoutClusters, 'octilinear');
   state.summary.push(`octilinear: ${ids.length} stations moved into the layout, ${checked} segments octilinear, ${frames} frames`);
+  const covering = await markersOverStations(page);
+  check(covering.length === 0, `octilinear: cluster markers over station symbols: ${covering.join(', ')}`);
+
+  // London seen whole: its centre is a knot of interchanges with no free spot near the POIs'
+  // clusters; their markers stand off the network on leaders, not on the stations.
+  await page.goto('about:blank');
+  await openApp(page, baseUrl, '#/metro/london');
+  await page.waitForSelector(`${MAP}[data-status=ready][data-city=london]`);
+  await page.click('[data-testid=mode-switch] [data-value=octilinear]');
+  await page.waitForSelector(`${MAP}[data-mode=octilinear][data-transition=idle][data-layout=ready]`);
+  const london = await waitForClusters(page, 0);
+  check(london.space === 'layout' && london.markers.length > 0, `London octilinear: ${london.markers.length} markers in ${london.space} space`);
+  const londonCovering = await markersOverStations(page);
+  check(londonCovering.length === 0, `London octilinear: cluster markers over station symbols: ${londonCovering.join(', ')}`);
+  state.summary.push(`no cluster marker over a station (Vienna, London ${london.markers.length} markers)`);
 
   checkNoConsoleErrors(state);
 }

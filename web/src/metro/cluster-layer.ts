@@ -38,10 +38,11 @@ function httpUrl(value: string | undefined): string | undefined {
 
 /**
  * Where a marker may stand instead of on its place: its place, then rings of 8 spots, upwards
- * first, out to where a leader line still reads as pointing at the place.
+ * first, out to where a leader line still reads as pointing at the place (a dense centre,
+ * London's seen whole, is 400 px across: the outer rings reach past it).
  */
 const OFFSETS: [number, number][] = [[0, 0]];
-for (const radius of [26, 44, 64, 90, 120, 160]) {
+for (const radius of [26, 44, 64, 90, 120, 160, 210, 270]) {
   for (const degrees of [270, 315, 225, 0, 180, 45, 135, 90]) {
     const a = (degrees * Math.PI) / 180;
     OFFSETS.push([Math.round(radius * Math.cos(a)), Math.round(radius * Math.sin(a))]);
@@ -220,24 +221,41 @@ export class ClusterLayer {
   /**
    * Moves each marker (by prominence) off station symbols, station names, lines and the
    * markers placed before it: to the nearest free spot on rings around its place, joined to it
-   * by a leader line; where no spot is free it stays on its place. Then names the markers.
+   * by a leader line. Where no spot is free, to the one that covers the least: never another
+   * marker, the map's edge or a panel over the map where avoidable, then as few stations and names, then as few
+   * lines as can be (on its place, a cluster in London's centre hid four interchanges). Then
+   * names the markers.
    */
   private arrange(): void {
     const top = this.markers.filter((marker) => !marker.pick.preview);
     if (top.length === 0) return;
-    const { boxes, segments } = this.obstacles();
+    const { boxes, segments, covered = [] } = this.obstacles();
+    const { width, height } = this.map.size;
     const taken: Box[] = [];
     const overlaps = (a: Box, b: Box) => a.x0 < b.x1 && b.x0 < a.x1 && a.y0 < b.y1 && b.y0 < a.y1;
-    const free = (box: Box) => !boxes.some((b) => overlaps(box, b)) && !taken.some((b) => overlaps(box, b)) && !segments.some((s) => segmentMeets(s, box));
+    const count = <T>(items: T[], hits: (item: T) => boolean) => items.reduce((n, item) => n + (hits(item) ? 1 : 0), 0);
+    const outside = (box: Box) => box.x0 < 0 || box.y0 < 0 || box.x1 > width || box.y1 > height || covered.some((b) => overlaps(box, b));
+    // What a marker at `box` covers, worst first in the weights; 0: a free spot.
+    const cost = (box: Box) =>
+      1e6 * count(taken, (b) => overlaps(box, b)) +
+      1e4 * (outside(box) ? 1 : 0) +
+      100 * count(boxes, (b) => overlaps(box, b)) +
+      count(segments, (segment) => segmentMeets(segment, box));
     // Most prominent first: it keeps its place if it can.
     for (const marker of [...top].reverse()) {
       const [x, y] = this.map.toScreen(marker.anchor.x, marker.anchor.y);
       const at = (dx: number, dy: number): Box => ({ x0: x + dx + marker.box.x0, y0: y + dy + marker.box.y0, x1: x + dx + marker.box.x1, y1: y + dy + marker.box.y1 });
-      const offset = OFFSETS.find(([dx, dy]) => free(at(dx, dy))) ?? [0, 0];
+      let offset = OFFSETS[0]!;
+      let least = Infinity;
+      for (const [dx, dy] of OFFSETS) {
+        const c = cost(at(dx, dy));
+        if (c < least) [offset, least] = [[dx, dy], c];
+        if (c === 0) break;
+      }
       this.setOffset(marker, offset[0], offset[1]);
       taken.push(at(offset[0], offset[1]));
     }
-    this.hideCrowdedNames(taken, boxes, segments);
+    this.hideCrowdedNames(taken, boxes, segments, covered);
   }
 
   private setOffset(marker: Marker, dx: number, dy: number): void {
@@ -317,10 +335,10 @@ export class ClusterLayer {
 
   /**
    * Names go right of their pin, or left, where they cover no marker, no name placed before
-   * (by prominence) and nothing in `boxes` or on `segments` (the map's features); a name with
-   * room on neither side is hidden.
+   * (by prominence) and nothing in `boxes` or on `segments` (the map's features), within the
+   * map and off the panels over it (`covered`); a name with room on neither side is hidden.
    */
-  private hideCrowdedNames(markerBoxes?: Box[], boxes: Box[] = [], segments: MapSegment[] = []): void {
+  private hideCrowdedNames(markerBoxes?: Box[], boxes: Box[] = [], segments: MapSegment[] = [], covered: Box[] = []): void {
     const overlaps = (a: Box, b: Box) => a.x0 < b.x1 && b.x0 < a.x1 && a.y0 < b.y1 && b.y0 < a.y1;
     const top = this.markers.filter((marker) => !marker.pick.preview);
     const placed = top.map((marker) => {
@@ -333,12 +351,15 @@ export class ClusterLayer {
     // sides found then stay.
     if (!markerBoxes) return;
     const taken: Box[] = placed.map(({ box }) => box);
+    const { width, height } = this.map.size;
+    const shown = (b: Box) => b.x0 >= 0 && b.y0 >= 0 && b.x1 <= width && b.y1 <= height && !covered.some((c) => overlaps(b, c));
     for (const { marker, box, shift } of placed) {
       const name = marker.name;
       if (!name) continue;
       const side = [name.right, name.left].find((candidate) => {
         const screen = shift(candidate);
         return (
+          shown(screen) &&
           !taken.some((other) => other !== box && overlaps(screen, other)) &&
           !boxes.some((other) => overlaps(screen, other)) &&
           !segments.some((segment) => segmentMeets(segment, screen))

@@ -72,6 +72,8 @@ export interface MapSegment {
 export interface MapObstacles {
   boxes: Box[];
   segments: MapSegment[];
+  /** Screen boxes the page's panels cover (legend, controls, attribution): nothing to stand under. */
+  covered?: Box[];
 }
 
 /** One line's strokes: along its edges, and its joins through the stations. */

@@ -1,3 +1,4 @@
+import type { Box } from '../map/labels';
 import {
   clustersPath,
   fetchCities,
@@ -281,7 +282,7 @@ export class MetroView implements View {
       );
       this.layers.setLabelObstacles(() => this.clusters?.boxes() ?? []);
       // Markers move off stations, lines and the server's station names.
-      this.clusters.setObstacles(() => this.layers?.mapObstacles() ?? { boxes: [], segments: [] });
+      this.clusters.setObstacles(() => ({ ...(this.layers?.mapObstacles() ?? { boxes: [], segments: [] }), covered: this.panelBoxes() }));
       this.layers.setLabelsVisible(this.legend.labelsVisible);
       this.layers.setGridVisible(this.options.state.grid);
       this.options.setHasPois(pois.features.length > 0);
@@ -310,6 +311,22 @@ export class MetroView implements View {
       this.map.element.dataset.status = 'error';
       this.status.error(`Could not load the metro map of ${summary.name}`, error, () => void this.loadCity(summary));
     }
+  }
+
+  /**
+   * The boxes (map pixels) of the panels over the map: the legend and info column's boxes, the
+   * details, the zoom buttons, the attribution (empty or hidden ones left out).
+   */
+  private panelBoxes(): Box[] {
+    const area = this.map.element.parentElement;
+    if (!area) return [];
+    const origin = this.map.element.getBoundingClientRect();
+    const panels = [...area.children].flatMap((child) =>
+      child === this.map.element ? [] : child.classList.contains('map-side') ? [...child.children] : [child]);
+    return panels
+      .map((panel) => panel.getBoundingClientRect())
+      .filter((r) => r.width > 0 && r.height > 0)
+      .map((r) => ({ x0: r.left - origin.left, y0: r.top - origin.top, x1: r.right - origin.left, y1: r.bottom - origin.top }));
   }
 
   private clearMap(): void {
