@@ -26,6 +26,8 @@ export interface Frame {
   readonly width: number;
   readonly height: number;
   project(position: LonLat): [number, number];
+  /** Projects [lon, lat, lon, lat, ...] into [x, y, ...]: project's loop without an array per point. */
+  projectAll(lonLat: ArrayLike<number>): Float64Array;
   /** The position at a point of the frame: project's inverse. */
   unproject(x: number, y: number): LonLat;
 }
@@ -43,6 +45,17 @@ export function frameFor(bbox: BBox, size = 1000): Frame {
     project(position) {
       const [x, y] = mercator(position);
       return [(x - west) * scale, (y - north) * scale];
+    },
+    projectAll(lonLat) {
+      const out = new Float64Array(lonLat.length);
+      const limit = Math.sin((MAX_LAT * Math.PI) / 180);
+      for (let i = 0; i + 1 < lonLat.length; i += 2) {
+        // mercator() inlined: x = (lon + 180) / 360, y = 1/2 - ln((1 + sin) / (1 - sin)) / (4 pi).
+        const sin = Math.max(-limit, Math.min(limit, Math.sin((lonLat[i + 1]! * Math.PI) / 180)));
+        out[i] = (((lonLat[i]! + 180) / 360) - west) * scale;
+        out[i + 1] = (0.5 - Math.log((1 + sin) / (1 - sin)) / (4 * Math.PI) - north) * scale;
+      }
+      return out;
     },
     unproject(x, y) {
       return inverseMercator(x / scale + west, y / scale + north);

@@ -7,7 +7,7 @@ import { ROAD_CLASSES, type RoadClass, type RoadGraph } from './road-graph';
 const STYLE: Record<RoadClass, { color: string; width: number }> = {
   path: { color: '#b4a58d', width: 0.9 },
   service: { color: '#a3adb8', width: 1 },
-  minor: { color: '#7b8794', width: 1.3 },
+  minor: { color: '#7b8794', width: 1 },
   medium: { color: '#45525f', width: 2.1 },
   major: { color: '#16324f', width: 3 },
 };
