@@ -4,6 +4,7 @@
 #include "load/file.hpp"
 #include "load/json_fields.hpp"
 #include "load/load_error.hpp"
+#include "load/osm_pois.hpp"
 #include "load/text_repair.hpp"
 #include "util/stop.hpp"
 
@@ -174,8 +175,9 @@ std::vector<model::Poi> parse_pois_js_array(std::string_view text, const std::st
 }
 
 std::vector<model::Poi> load_pois(const std::string& path, const PoiLoadOptions& options, const ImportLimits& limits) {
-  auto text = read_file(path);
   auto name = file_name(path);
+  if (is_osm_file_name(name)) return load_osm_pois(path, nullptr, limits);
+  auto text = read_file(path);
   auto ends_with = [&](std::string_view suffix) {
     return name.size() >= suffix.size() && name.compare(name.size() - suffix.size(), suffix.size(), suffix) == 0;
   };

@@ -31,7 +31,8 @@ std::vector<model::Poi> parse_pois_csv(std::string_view text, const std::string&
 std::vector<model::Poi> parse_pois_js_array(std::string_view text, const std::string& source,
                                             const PoiLoadOptions& options = {}, const ImportLimits& limits = {});
 
-// Picks the parser from the content (and the file extension for CSV).
+// Picks the parser from the content (and the file extension for CSV); an OSM extract (.osm,
+// .osm.gz, .osm.bz2, .osm.pbf) gives its tourist places (load/osm_pois.hpp).
 std::vector<model::Poi> load_pois(const std::string& path, const PoiLoadOptions& options = {}, const ImportLimits& limits = {});
 
 }  // namespace tourmap::load
