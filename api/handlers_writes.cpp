@@ -35,6 +35,24 @@ void require_new_id(const std::string& id, const std::string& what) {
                    "id");
 }
 
+// ?modes=bus,tram: the transit modes of an OSM import (load/metro_osm.hpp), at most 9.
+std::vector<std::string> modes_param(const Request& req) {
+  static const std::vector<std::string> known = {"subway", "light_rail", "tram", "train", "monorail",
+                                                 "funicular", "bus", "trolleybus", "ferry"};
+  std::vector<std::string> modes;
+  const auto text = text_param(req, "modes");
+  for (std::size_t start = 0; start < text.size();) {
+    auto end = text.find(',', start);
+    if (end == std::string::npos) end = text.size();
+    const auto mode = text.substr(start, end - start);
+    if (std::find(known.begin(), known.end(), mode) == known.end())
+      throw bad("modes", "unknown transit mode '" + mode + "' (subway, light_rail, tram, train, monorail, funicular, bus, trolleybus, ferry)");
+    if (std::find(modes.begin(), modes.end(), mode) == modes.end()) modes.push_back(mode);
+    start = end + 1;
+  }
+  return modes;
+}
+
 void require_body(const Request& req) {
   if (req.body.empty()) throw bad("body", "empty: send the source file", "invalid_body");
 }
@@ -110,6 +128,13 @@ Response put_metro(AppContext& ctx, Request& req) {
         throw ApiError(400, "invalid_rules", std::string("body.") + e.what() + ": nothing was imported", "rules");
       }
     }
+  } else if (import.format == store::MetroFormat::osm) {
+    const auto extension = sniff_osm_extension(req.body);
+    if (extension.empty())
+      throw ApiError(415, "unsupported_format",
+                     "body: not an OSM extract (expected OSM XML, .osm.gz, .osm.bz2 or .osm.pbf bytes)", "body");
+    import.files = {dir.write(id + "." + extension, req.body)};
+    import.modes = modes_param(req);
   } else
     import.files = {dir.write(id + (import.format == store::MetroFormat::loom ? ".geojson" : ".csv"), req.body)};
   return run_import([&] {

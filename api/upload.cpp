@@ -100,6 +100,7 @@ std::string sniff_osm_extension(std::string_view bytes) {
 }
 
 std::string sniff_poi_extension(std::string_view bytes) {
+  if (auto osm = sniff_osm_extension(bytes); !osm.empty()) return osm;  // an extract's tourist places
   auto text = skip_space(bytes);
   if (!text.empty() && text.front() == '{') return "json";
   if (!text.empty() && text.front() == '[') return "js";

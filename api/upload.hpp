@@ -34,7 +34,8 @@ std::size_t remove_stale_uploads(const std::filesystem::path& parent = {});
 // File name extensions by content, for bodies sent without a `format`:
 //   OSM: "osm.pbf" (OSMHeader blob), "osm.gz" (gzip), "osm.bz2" (bzip2), "osm" (XML); "" unknown.
 std::string sniff_osm_extension(std::string_view bytes);
-//   POIs: "json" (GeoJSON object), "js" (JSON array or `var x = [...]`), else "csv".
+//   POIs: an OSM extract's extension (as above), "json" (GeoJSON object), "js" (JSON array or
+//   `var x = [...]`), else "csv".
 std::string sniff_poi_extension(std::string_view bytes);
 
 }  // namespace tourmap::api

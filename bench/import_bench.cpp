@@ -63,14 +63,7 @@ Counts metro_counts(const model::MetroNetwork& net) {
   return {net.nodes.size(), net.edges.size(), net.station_count(), 0, net.nodes.size() + net.edges.size() + net.lines.size()};
 }
 
-model::MetroNetwork load_metro(const store::MetroImport& m) {
-  switch (m.format) {
-    case store::MetroFormat::loom: return load::load_metro_loom(m.files[0]);
-    case store::MetroFormat::station_csvs: return load::load_metro_station_csvs(m.files[0], m.files[1], m.files[2]);
-    case store::MetroFormat::line_csv: return load::load_metro_line_csv(m.files[0]);
-  }
-  return {};
-}
+model::MetroNetwork load_metro(const store::MetroImport& m) { return store::load_metro_files(m); }
 
 std::vector<Case> cases_from(const store::Manifest& manifest) {
   std::vector<Case> cases;

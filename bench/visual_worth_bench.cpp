@@ -140,13 +140,7 @@ std::vector<metro::WorthSource> synthetic_city(std::size_t n, double side, unsig
 model::City load_city(const store::MetroImport& m) {
   model::City city;
   city.info.id = m.city.id;
-  switch (m.format) {
-    case store::MetroFormat::loom: city.metro = load::load_metro_loom(m.files.at(0)); break;
-    case store::MetroFormat::station_csvs:
-      city.metro = load::load_metro_station_csvs(m.files.at(0), m.files.at(1), m.files.at(2));
-      break;
-    case store::MetroFormat::line_csv: city.metro = load::load_metro_line_csv(m.files.at(0)); break;
-  }
+  city.metro = store::load_metro_files(m);
   city.info.bbox = model::bbox_of(city.metro);
   city.info.projection = geo::projection_for(city.info.bbox);
   return city;

@@ -240,6 +240,7 @@ int cmd_import(const std::vector<std::string>& args) {
   Config c = default_config();
   std::vector<std::string> files;
   std::string city, name, format = "loom", attribution, category, id, rules_file;
+  std::vector<std::string> modes;
   bool force = false;
   po::options_description desc("tourmap import " + what + " options");
   desc.add_options()("help,h", "show this help")("force", po::bool_switch(&force), "import even if unchanged")(
@@ -251,7 +252,9 @@ int cmd_import(const std::vector<std::string>& args) {
     desc.add_options()("city", po::value(&city)->required(), "city id (lower-case slug)")(
         "name", po::value(&name)->required(), "city name")(
         "format", po::value(&format)->default_value(format),
-        "loom | station-csvs (stations, lines, connections) | line-csv")(
+        "loom | station-csvs (stations, lines, connections) | line-csv | osm (an extract's route relations)")(
+        "modes", po::value(&modes)->multitoken(),
+        "osm: transit modes (subway light_rail tram train monorail funicular bus trolleybus ferry); default: the rail modes present, else bus")(
         "attribution", po::value(&attribution), "data attribution shown with the city")(
         "rules", po::value(&rules_file), "JSON file of name and line rules, as a manifest's metro \"rules\"");
   if (what == "pois")
@@ -300,6 +303,7 @@ int cmd_import(const std::vector<std::string>& args) {
   } else if (what == "metro") {
     store::MetroImport import{{city, name, attribution}, store::parse_metro_format(format), files, force};
     if (!rules_file.empty()) import.rules = read_rules(rules_file);
+    import.modes = modes;
     print_result(store::import_metro(db, import));
   } else if (what == "pois") {
     if (files.size() != 1) throw std::invalid_argument("give one POI file");

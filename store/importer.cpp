@@ -3,6 +3,7 @@
 #include "load/file.hpp"
 #include "load/load_error.hpp"
 #include "load/metro_load.hpp"
+#include "load/metro_osm.hpp"
 #include "load/name_rules.hpp"
 #include "load/osm_context.hpp"
 #include "load/osm_roads.hpp"
@@ -100,7 +101,8 @@ MetroFormat parse_metro_format(const std::string& name) {
   if (name == "loom") return MetroFormat::loom;
   if (name == "station-csvs") return MetroFormat::station_csvs;
   if (name == "line-csv") return MetroFormat::line_csv;
-  throw std::invalid_argument("unknown metro format '" + name + "' (expected loom, station-csvs or line-csv)");
+  if (name == "osm") return MetroFormat::osm;
+  throw std::invalid_argument("unknown metro format '" + name + "' (expected loom, station-csvs, line-csv or osm)");
 }
 
 std::string fingerprint_files(const std::vector<std::string>& files) {
@@ -128,6 +130,30 @@ std::string metro_fingerprint(const std::vector<std::string>& files, const load:
   return fingerprint_files(files) + "/" + util::hex64(h);
 }
 
+model::MetroNetwork load_metro_files(const MetroImport& req, const load::ImportLimits& limits, load::MetroLoadStats* stats,
+                                     std::string* summary) {
+  switch (req.format) {
+    case MetroFormat::loom: return load::load_metro_loom(req.files.at(0), limits, stats);
+    case MetroFormat::station_csvs:
+      return load::load_metro_station_csvs(req.files.at(0), req.files.at(1), req.files.at(2), limits, stats);
+    case MetroFormat::line_csv: return load::load_metro_line_csv(req.files.at(0), limits, stats);
+    case MetroFormat::osm: {
+      load::OsmTransitStats transit;
+      auto net = load::load_metro_osm(req.files.at(0), req.modes, limits, &transit);
+      if (summary) {
+        std::string modes;
+        for (const auto& m : transit.modes) modes += (modes.empty() ? "" : ", ") + m;
+        *summary = "; OSM " + modes + ": " + std::to_string(transit.routes) + " routes";
+        if (transit.routes_without_stops > 0)
+          *summary += " (" + std::to_string(transit.routes_without_stops) +
+                      " with fewer than two stops in the extract, not used)";
+      }
+      return net;
+    }
+  }
+  throw std::invalid_argument("unknown metro format");
+}
+
 ImportResult import_metro(Db& db, const MetroImport& req, const load::ImportLimits& limits) {
   require_id(req.city.id, "city");
   if (req.city.name.empty()) throw std::invalid_argument("city name is empty");
@@ -141,20 +167,15 @@ ImportResult import_metro(Db& db, const MetroImport& req, const load::ImportLimi
   result.target = req.city.id;
   if (auto why = load::rules_error(req.rules); !why.empty()) throw std::invalid_argument("rules." + why);
   auto fp = metro_fingerprint(req.files, req.rules);
+  for (const auto& mode : req.modes) fp += (&mode == &req.modes.front() ? "/modes=" : ",") + mode;
   if (!req.force && last_fingerprint(db, "metro", req.city.id) == fp && city_version(db, req.city.id)) {
     result.skipped = true;
     result.version = city_version(db, req.city.id).value_or(0);
     return result;
   }
-  model::MetroNetwork net;
   load::MetroLoadStats stats;
-  switch (req.format) {
-    case MetroFormat::loom: net = load::load_metro_loom(req.files[0], limits, &stats); break;
-    case MetroFormat::station_csvs:
-      net = load::load_metro_station_csvs(req.files[0], req.files[1], req.files[2], limits, &stats);
-      break;
-    case MetroFormat::line_csv: net = load::load_metro_line_csv(req.files[0], limits, &stats); break;
-  }
+  std::string osm_summary;  // format osm: the modes and routes read
+  auto net = load_metro_files(req, limits, &stats, &osm_summary);
   auto cleaned = load::apply_metro_rules(net, req.rules);
   auto close = metro::assign_line_styles(net, req.rules.min_colour_difference.value_or(metro::kMinColourDifference));
   result.rows = net.nodes.size() + net.edges.size() + net.lines.size();
@@ -168,7 +189,7 @@ ImportResult import_metro(Db& db, const MetroImport& req, const load::ImportLimi
   if (stats.merged_connections > 0)
     result.summary += " (" + std::to_string(stats.merged_connections) + " of " + std::to_string(stats.connections) +
                       " connections merged into parallel edges)";
-  result.summary += rules_summary(cleaned, req.rules) + styles_summary(net, close);
+  result.summary += osm_summary + rules_summary(cleaned, req.rules) + styles_summary(net, close);
   return result;
 }
 

@@ -8,6 +8,7 @@
 #include "repo.hpp"
 
 #include "load/import_limits.hpp"
+#include "load/metro_load.hpp"
 #include "load/name_rules.hpp"
 
 #include <functional>
@@ -16,8 +17,8 @@
 
 namespace tourmap::store {
 
-enum class MetroFormat { loom, station_csvs, line_csv };
-// "loom" | "station-csvs" | "line-csv"; throws std::invalid_argument otherwise.
+enum class MetroFormat { loom, station_csvs, line_csv, osm };
+// "loom" | "station-csvs" | "line-csv" | "osm"; throws std::invalid_argument otherwise.
 MetroFormat parse_metro_format(const std::string& name);
 
 struct ImportResult {
@@ -33,10 +34,15 @@ struct ImportResult {
 struct MetroImport {
   CityMeta city;
   MetroFormat format = MetroFormat::loom;
-  std::vector<std::string> files;  // loom/line-csv: 1 file; station-csvs: stations, lines, connections
+  std::vector<std::string> files;  // loom/line-csv/osm: 1 file; station-csvs: stations, lines, connections
   bool force = false;
   load::MetroRules rules{};  // applied after loading (load/name_rules.hpp)
+  std::vector<std::string> modes{};  // osm: the transit modes (load/metro_osm.hpp); none: the rail modes present, else bus
 };
+// The network in the request's files, as its format reads them (no rules applied); `summary`
+// gets what an OSM import read ("; OSM train: 4 routes ...").
+model::MetroNetwork load_metro_files(const MetroImport& request, const load::ImportLimits& limits = {},
+                                     load::MetroLoadStats* stats = nullptr, std::string* summary = nullptr);
 // Loads the files, applies the rules, styles lines of close colours (metro/line_styles.hpp)
 // and stores the result. Skipped when the files, the rules and the import-time processing are
 // those of the last import (metro_fingerprint).

@@ -47,6 +47,13 @@ Manifest parse_manifest(const std::string& json_text, const std::string& data_di
       metro.files.push_back(resolve(data_dir, f.get<std::string>()));
     }
     if (mj.contains("rules")) metro.rules = parse_metro_rules(mj["rules"], where + ".metro.rules");
+    if (mj.contains("modes")) {
+      if (!mj["modes"].is_array()) throw std::invalid_argument(where + ".metro.modes: expected an array of strings");
+      for (const auto& mode : mj["modes"]) {
+        if (!mode.is_string()) throw std::invalid_argument(where + ".metro.modes: expected strings");
+        metro.modes.push_back(mode.get<std::string>());
+      }
+    }
     m.metros.push_back(metro);
     if (c.contains("pois")) {
       const auto& pj = c["pois"];

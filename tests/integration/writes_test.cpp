@@ -163,6 +163,39 @@ TEST(Writes, ImportCityByUploadThenDelete) {
   EXPECT_EQ(live.get("/api/v1/cities/freiburg/pois").status, 404);
 }
 
+TEST(Writes, ImportCityFromAnOsmExtract) {
+  // Issue 16: a city's transit network from the route relations of an extract and its POIs
+  // from its tourist places, both uploaded as the .osm.pbf bytes.
+  LiveServer live;
+  const auto key = create_key(live);
+  const std::string bytes = file_bytes(data_file("roads/liechtenstein-latest.osm.pbf"));
+  auto r = http_request(live.port(), "PUT", "/api/v1/cities/li/metro?format=osm&modes=train,bus&name=Liechtenstein",
+                        bearer(key), bytes);
+  ASSERT_EQ(r.status, 200) << r.body;
+  const auto summary = nlohmann::json::parse(r.body)["summary"].get<std::string>();
+  EXPECT_NE(summary.find("OSM train, bus: 20 routes"), std::string::npos) << summary;
+  const auto city = live.get_json("/api/v1/cities/li");
+  EXPECT_GE(city["counts"]["stations"].get<int>(), 20);
+  EXPECT_EQ(city["counts"]["lines"], 5);
+  r = http_request(live.port(), "PUT", "/api/v1/cities/li/pois", bearer(key), bytes);
+  ASSERT_EQ(r.status, 200) << r.body;
+  EXPECT_EQ(live.get_json("/api/v1/cities/li/pois")["matched"], 26);
+  // The layout of a network from OSM: octilinear, nothing added.
+  const auto layout = live.get_json("/api/v1/cities/li/layout");
+  EXPECT_EQ(layout["quality"]["octilinear_share"], 1.0);
+  EXPECT_EQ(layout["quality"]["added_crossings"], 0);
+
+  // An unknown mode and a body that is no extract: 4xx naming the field, nothing imported.
+  r = http_request(live.port(), "PUT", "/api/v1/cities/li2/metro?format=osm&modes=bus,zeppelin&name=X", bearer(key), bytes);
+  EXPECT_EQ(r.status, 400) << r.body;
+  EXPECT_EQ(nlohmann::json::parse(r.body)["error"]["field"], "modes");
+  r = http_request(live.port(), "PUT", "/api/v1/cities/li2/metro?format=osm&name=X", bearer(key), "not osm");
+  EXPECT_EQ(r.status, 415) << r.body;
+  r = http_request(live.port(), "PUT", "/api/v1/cities/li2/metro?format=osm&modes=ferry&name=X", bearer(key), bytes);
+  EXPECT_EQ(r.status / 100, 4) << r.body;  // no ferry route in the extract
+  EXPECT_EQ(live.get("/api/v1/cities/li2").status, 404);
+}
+
 TEST(Writes, UploadLimitAppliesOnlyWithAKey) {
   // A body limit below the extract's size: with a key the upload limit applies instead.
   LiveServer live({"--max-body", "100000", "--max-upload", "300000"});
