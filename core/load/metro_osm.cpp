@@ -207,7 +207,8 @@ std::size_t drop_skip_edges(model::MetroNetwork& net) {
     for (std::size_t e = 0; e < net.edges.size() && !changed; ++e) {
       const auto u = net.edges[e].from, w = net.edges[e].to;
       const auto origin = net.nodes[u].pos;
-      const auto [wx, wy] = metres_from(origin, net.nodes[w].pos);
+      const auto end = metres_from(origin, net.nodes[w].pos);
+      const double wx = end.first, wy = end.second;  // not a structured binding: lambdas capture these
       const double length = std::hypot(wx, wy);
       if (length <= 0) continue;
       const auto along = [&](std::uint32_t v) {  // near the segment u-w

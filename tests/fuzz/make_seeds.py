@@ -153,6 +153,32 @@ def pbf_blob(kind, payload, compress):
     return struct.pack(">I", len(header)) + header + blob
 
 
+def osm_transit_xml():
+    """A tram line both ways under a route master, a stop area, a museum node and a gallery way."""
+    tag = lambda k, v: f'<tag k="{k}" v="{v}"/>'
+    nodes = [(1, 48.200, 16.360, tag("public_transport", "stop_position") + tag("name", "Markt")),
+             (2, 48.200, 16.370, tag("public_transport", "stop_position") + tag("name", "Rathaus")),
+             (3, 48.2003, 16.3702, tag("public_transport", "platform") + tag("name", "1")),
+             (4, 48.200, 16.380, tag("tourism", "museum") + tag("name", "Museum") + tag("wikidata", "Q1")),
+             (5, 48.201, 16.381, ""), (6, 48.202, 16.382, ""), (7, 48.201, 16.383, "")]
+    out = ['<?xml version="1.0" encoding="UTF-8"?>', '<osm version="0.6" generator="tourmap-seed">']
+    for nid, lat, lon, tags in nodes:
+        out.append(f' <node id="{nid}" lat="{lat:.7f}" lon="{lon:.7f}" version="1">{tags}</node>')
+    out.append(' <way id="20" version="1"><nd ref="5"/><nd ref="6"/><nd ref="7"/><nd ref="5"/>'
+               + tag("tourism", "gallery") + tag("name", "Galerie") + '</way>')
+    member = lambda t, r, role: f'<member type="{t}" ref="{r}" role="{role}"/>'
+    out.append(' <relation id="10" version="1">' + member("node", 1, "stop") + member("node", 2, "stop")
+               + member("node", 3, "platform") + tag("type", "route") + tag("route", "tram") + tag("ref", "1") + '</relation>')
+    out.append(' <relation id="11" version="1">' + member("node", 2, "stop") + member("node", 1, "stop")
+               + tag("type", "route") + tag("route", "tram") + tag("ref", "1") + tag("colour", "#ff0000") + '</relation>')
+    out.append(' <relation id="12" version="1">' + member("relation", 10, "") + member("relation", 11, "")
+               + tag("type", "route_master") + tag("ref", "1") + '</relation>')
+    out.append(' <relation id="13" version="1">' + member("node", 2, "stop") + member("node", 3, "platform")
+               + tag("type", "public_transport") + tag("public_transport", "stop_area") + tag("name", "Rathausplatz") + '</relation>')
+    out.append("</osm>")
+    return "\n".join(out) + "\n"
+
+
 def osm_pbf(compress):
     header = field_bytes(4, b"OsmSchema-V0.6") + field_bytes(4, b"DenseNodes") + field_bytes(16, b"tourmap-seed")
     strings = [b""]
@@ -376,6 +402,7 @@ def main():
     put("text_repair", "latin1.bin", b"Caf\xe9 \xc3\xa9\xc2")
     # --- OSM
     put("osm_xml", "grid.osm", osm_xml())
+    put("osm_xml", "transit.osm", osm_transit_xml())
     put("osm_pbf", "grid_zlib.osm.pbf", osm_pbf(compress=True))
     put("osm_pbf", "grid_raw.osm.pbf", osm_pbf(compress=False))
     # --- manifest

@@ -1,6 +1,6 @@
-// OSM road imports (core/load/osm_roads: load_osm_roads, then core/load/osm_context:
-// load_osm_context, both through libosmium, as the importer calls them) on a file rewritten for
-// every input. Built twice: fuzz_osm_xml writes roads.osm
+// OSM imports (core/load/osm_roads: load_osm_roads, core/load/osm_context: load_osm_context,
+// core/load/osm_pois: load_osm_pois, core/load/metro_osm: load_metro_osm, all through
+// libosmium, as the importer calls them) on a file rewritten for every input. Built twice: fuzz_osm_xml writes roads.osm
 // (XML), fuzz_osm_pbf writes roads.osm.pbf; libosmium picks the format from the extension.
 // Clean error: load::LoadError (the loader wraps libosmium's exceptions). Either way no file
 // descriptor may stay open (a server importing uploads would run out).
@@ -8,7 +8,9 @@
 #include "fuzz_common.hpp"
 
 #include "load/load_error.hpp"
+#include "load/metro_osm.hpp"
 #include "load/osm_context.hpp"
+#include "load/osm_pois.hpp"
 #include "load/osm_roads.hpp"
 
 #include <cmath>
@@ -48,6 +50,16 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       for (const auto& p : l.points) FUZZ_CHECK(located(p));
     }
     for (const auto& p : context.places) FUZZ_CHECK(!p.name.empty() && located(p.pos));
+  } catch (const load::LoadError&) {
+  }
+  try {
+    for (const auto& poi : load::load_osm_pois(path)) FUZZ_CHECK(!poi.name.empty() && located(poi.pos));
+  } catch (const load::LoadError&) {
+  }
+  try {
+    const auto metro = load::load_metro_osm(path, {"bus", "tram", "train", "subway"});
+    for (const auto& e : metro.edges) FUZZ_CHECK(e.from < metro.nodes.size() && e.to < metro.nodes.size() && e.from != e.to);
+    for (const auto& n : metro.nodes) FUZZ_CHECK(located(n.pos));
   } catch (const load::LoadError&) {
   }
   FUZZ_CHECK(fuzz::open_fds() <= fds);
