@@ -5,6 +5,7 @@
 #include "load/load_error.hpp"
 #include "load/metro_builder.hpp"
 #include "load/osm_input.hpp"
+#include "load/strings.hpp"
 #include "util/stop.hpp"
 
 #include <osmium/handler.hpp>
@@ -40,17 +41,12 @@ std::string text(const osmium::TagList& tags, const char* key) {
   return value ? value : "";
 }
 
-std::string lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return s;
-}
-
 // "#1f77b4" or "1F77B4" -> "1f77b4"; anything else (named colours) -> "".
 std::string colour_of(const std::string& value) {
   std::string hex = value.size() == 7 && value[0] == '#' ? value.substr(1) : value;
   if (hex.size() != 6 || !std::all_of(hex.begin(), hex.end(), [](unsigned char c) { return std::isxdigit(c); }))
     return "";
-  return lower(hex);
+  return ascii_lower(hex);
 }
 
 // A stop or platform member of a route: 'n' or 'w' and the OSM id.
@@ -146,17 +142,7 @@ class StopCollector : public osmium::handler::Handler {
     check_limit(++ways_, limits_.max_osm_ways, "max_osm_ways", source_, "ways in the file");
     tick();
     if (!wanted_.count({'w', way.id()})) return;
-    double lon = 0, lat = 0;
-    std::size_t n = 0;
-    const auto& nodes = way.nodes();
-    const bool closed = nodes.size() > 2 && nodes.front().ref() == nodes.back().ref();
-    for (std::size_t i = 0; i + (closed ? 1 : 0) < nodes.size(); ++i)
-      if (nodes[i].location().valid()) {
-        lon += nodes[i].location().lon();
-        lat += nodes[i].location().lat();
-        ++n;
-      }
-    if (n > 0) add({'w', way.id()}, {lon / n, lat / n}, way.tags());
+    if (const auto centre = way_centre(way)) add({'w', way.id()}, *centre, way.tags());
   }
 
   std::map<ObjectKey, Stop> stops;
@@ -317,7 +303,7 @@ model::MetroNetwork load_metro_osm(const std::string& path, const std::vector<st
     };
     const auto new_station = [&](const ObjectKey& key, const Stop& stop, std::string name) {
       stations.push_back({std::string("s") + key.first + std::to_string(key.second), std::move(name), 0, 0, 0, stop.pos});
-      if (!stations.back().name.empty()) stations_by_name[lower(stations.back().name)].push_back(stations.size() - 1);
+      if (!stations.back().name.empty()) stations_by_name[ascii_lower(stations.back().name)].push_back(stations.size() - 1);
       return stations.size() - 1;
     };
     for (const auto& [key, stop] : collector.stops) {
@@ -335,7 +321,7 @@ model::MetroNetwork load_metro_osm(const std::string& path, const std::vector<st
     for (const auto& [key, stop] : collector.stops) {
       if (station_of.count(key) || station_name(stop.name).empty()) continue;
       std::optional<std::size_t> into;
-      if (auto it = stations_by_name.find(lower(stop.name)); it != stations_by_name.end())
+      if (auto it = stations_by_name.find(ascii_lower(stop.name)); it != stations_by_name.end())
         for (auto s : it->second)
           if (!into && geo::geodesic_distance_m(stations[s].first, stop.pos) <= kSameStationMetres) into = s;
       add_to(into ? *into : new_station(key, stop, stop.name), key, stop);

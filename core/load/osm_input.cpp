@@ -8,6 +8,7 @@
 #include <bzlib.h>
 #include <fcntl.h>
 #include <osmium/osm/tag.hpp>
+#include <osmium/osm/way.hpp>
 #include <unistd.h>
 #include <zlib.h>
 
@@ -379,6 +380,21 @@ bool well_formed_tags(const osmium::TagList& tags) {
   if (begin == end) return true;
   if (end < begin || end[-1] != '\0') return false;
   return std::count(begin, end, '\0') % 2 == 0;
+}
+
+std::optional<geo::LonLat> way_centre(const osmium::Way& way) {
+  double lon = 0, lat = 0;
+  std::size_t n = 0;
+  const auto& nodes = way.nodes();
+  const bool closed = nodes.size() > 2 && nodes.front().ref() == nodes.back().ref();
+  for (std::size_t i = 0; i + (closed ? 1 : 0) < nodes.size(); ++i)
+    if (nodes[i].location().valid()) {
+      lon += nodes[i].location().lon();
+      lat += nodes[i].location().lat();
+      ++n;
+    }
+  if (n == 0) return std::nullopt;
+  return geo::LonLat{lon / static_cast<double>(n), lat / static_cast<double>(n)};
 }
 
 }  // namespace tourmap::load

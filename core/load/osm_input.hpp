@@ -11,6 +11,7 @@
 //    bounded, as an osmium::io::File that can be read more than once.
 // And tag_value()/well_formed_tags(): reading tags safely (see there).
 
+#include "geo/lonlat.hpp"
 #include "load/import_limits.hpp"
 
 #include <osmium/io/file.hpp>
@@ -23,6 +24,7 @@
 
 namespace osmium {
 class TagList;
+class Way;
 }
 
 namespace tourmap::load {
@@ -105,6 +107,10 @@ class OsmInput {
 // they are: the walk then gets out of step and runs past the end of the list (a heap overread
 // on a crafted .osm.pbf). Here such a list simply ends at its last complete pair.
 const char* tag_value(const osmium::TagList& tags, const char* key);
+
+// The mean of a way's distinct node locations (a closed way's first node once), or none when
+// no node is located (all outside the extract): where a POI or a platform mapped as a way is.
+std::optional<geo::LonLat> way_centre(const osmium::Way& way);
 
 // True when the tag list is whole pairs of NUL-terminated strings, exactly filling the list:
 // only then may it go to libosmium code that walks it (the area assembler, the relations

@@ -4,6 +4,7 @@
 #include "load/file.hpp"
 #include "load/load_error.hpp"
 #include "load/osm_input.hpp"
+#include "load/strings.hpp"
 #include "util/stop.hpp"
 
 #include <osmium/handler.hpp>
@@ -109,11 +110,6 @@ double popularity_of(const osmium::TagList& tags, const std::string& category) {
   return score;
 }
 
-std::string lower(std::string s) {
-  std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return s;
-}
-
 struct Found {
   model::Poi poi;
   std::string wikidata;  // the item id, for merging
@@ -148,22 +144,12 @@ class PoiCollector : public osmium::handler::Handler {
       return;
     }
     if (!category_of(way.tags())) return;
-    // The mean of the distinct node locations (a closed way's first node once).
-    double lon = 0, lat = 0;
-    std::size_t n = 0;
-    const auto& nodes = way.nodes();
-    const bool closed = nodes.size() > 2 && nodes.front().ref() == nodes.back().ref();
-    for (std::size_t i = 0; i + (closed ? 1 : 0) < nodes.size(); ++i) {
-      if (!nodes[i].location().valid()) continue;
-      lon += nodes[i].location().lon();
-      lat += nodes[i].location().lat();
-      ++n;
-    }
-    if (n == 0) {
+    const auto centre = way_centre(way);
+    if (!centre) {
       ++stats_.no_location;
       return;
     }
-    add(way.tags(), "w" + std::to_string(way.id()), {lon / n, lat / n}, true);
+    add(way.tags(), "w" + std::to_string(way.id()), *centre, true);
   }
 
   void relation(const osmium::Relation& relation) {
@@ -176,7 +162,7 @@ class PoiCollector : public osmium::handler::Handler {
     std::vector<bool> gone(found_.size(), false);
     std::unordered_map<std::string, std::vector<std::size_t>> by_name, by_wikidata;
     const auto remember = [&](std::size_t i) {
-      by_name[lower(found_[i].poi.name)].push_back(i);
+      by_name[ascii_lower(found_[i].poi.name)].push_back(i);
       if (!found_[i].wikidata.empty()) by_wikidata[found_[i].wikidata].push_back(i);
     };
     for (std::size_t i = 0; i < found_.size(); ++i)
@@ -190,7 +176,7 @@ class PoiCollector : public osmium::handler::Handler {
       if (auto it = by_wikidata.find(found_[i].wikidata); !found_[i].wikidata.empty() && it != by_wikidata.end())
         for (auto j : it->second)
           if (!into && near(i, j, kSameWikidataMetres)) into = j;
-      if (auto it = by_name.find(lower(found_[i].poi.name)); !into && it != by_name.end())
+      if (auto it = by_name.find(ascii_lower(found_[i].poi.name)); !into && it != by_name.end())
         for (auto j : it->second)
           if (!into && near(i, j, kSameNameMetres)) into = j;
       if (!into) {
