@@ -3,6 +3,9 @@
 
 #include "map_export.hpp"
 #include "routes.hpp"
+#include "schematic_roads.hpp"
+
+#include <memory>
 
 namespace tourmap::api {
 
@@ -11,6 +14,10 @@ void add_metro_routes(Router& router, AppContext& ctx) {
              [&ctx](Request& req) { return ctx.metro.layout(req, false); });
   router.add("POST", "/api/v1/cities/{id}/layout", Exec::heavy,
              [&ctx](Request& req) { return ctx.metro.layout(req, true); });
+  // The streets in the schematic's space (issue 16): its cache lives with the route.
+  auto roads = std::make_shared<SchematicRoadsService>(ctx.catalog, ctx.metro);
+  router.add("GET", "/api/v1/cities/{id}/layout/roads", Exec::heavy,
+             [roads](Request& req) { return roads->handle(req); });
   router.add("GET", "/api/v1/cities/{id}/visual-worth", Exec::heavy,
              [&ctx](Request& req) { return ctx.metro.visual_worth(req); });
   router.add("GET", "/api/v1/cities/{id}/clusters", Exec::heavy,

@@ -3,11 +3,13 @@
 // checked the caller's API key (from the header, before reading the body) when they run. Each
 // import is one transaction (store/importer.hpp): a body that fails to load changes nothing.
 
+#include "multipart.hpp"
 #include "params.hpp"
 #include "routes.hpp"
 #include "upload.hpp"
 
 #include "load/load_error.hpp"
+#include "store/city_source.hpp"
 #include "store/importer.hpp"
 #include "store/metro_rules.hpp"
 #include "store/repo.hpp"
@@ -58,8 +60,14 @@ void require_body(const Request& req) {
 }
 
 nlohmann::json import_json(const store::ImportResult& r) {
-  return {{"kind", r.kind},       {"target", r.target}, {"skipped", r.skipped}, {"version", r.version},
-          {"rows", r.rows},       {"seconds", r.seconds}, {"summary", r.summary}};
+  return {{"kind", r.kind}, {"target", r.target},   {"skipped", r.skipped}, {"version", r.version},
+          {"rows", r.rows}, {"seconds", r.seconds}, {"summary", r.summary}, {"warnings", r.warnings}};
+}
+
+nlohmann::json import_json(const std::vector<store::ImportResult>& results) {
+  auto imports = nlohmann::json::array();
+  for (const auto& r : results) imports.push_back(import_json(r));
+  return {{"imports", imports}};
 }
 
 // Runs an import, mapping the loaders' and importer's errors to 4xx answers about the body:
@@ -143,6 +151,67 @@ Response put_metro(AppContext& ctx, Request& req) {
   });
 }
 
+// PUT /cities/{id}/source: the body is an OSM extract, or multipart/form-data with the parts
+// "osm" (the extract) and "gtfs" (a zipped feed, optional).
+struct SourceParts {
+  std::string_view osm, gtfs;
+};
+
+SourceParts source_parts(const Request& req) {
+  if (!is_multipart(req.content_type)) return {req.body, {}};
+  SourceParts out;
+  for (const auto& part : parse_multipart(req.body, req.content_type)) {
+    std::string_view* slot = part.name == "osm" ? &out.osm : part.name == "gtfs" ? &out.gtfs : nullptr;
+    if (!slot) throw bad("body", "unknown multipart part '" + part.name + "' (expected osm and gtfs)", "invalid_body");
+    if (!slot->empty() || part.data.empty())
+      throw bad(part.name, part.data.empty() ? "empty part" : "sent twice", "invalid_body");
+    *slot = part.data;
+  }
+  if (out.osm.empty()) throw bad("osm", "missing: send the OSM extract as the multipart part 'osm'", "invalid_body");
+  return out;
+}
+
+// Publishes a city import's stages on WS /api/v1/events as
+// {"type": "import_progress", "city", "stage", "step", "steps", "detail"}.
+std::function<void(const store::ImportProgress&)> progress_events(AppContext& ctx) {
+  return [events = ctx.events](const store::ImportProgress& p) {
+    events->publish(nlohmann::json{{"type", "import_progress"}, {"city", p.city}, {"stage", p.stage},
+                                   {"step", p.step}, {"steps", p.steps}, {"detail", p.detail}}
+                        .dump());
+  };
+}
+
+Response put_source(AppContext& ctx, Request& req) {
+  const auto& id = req.param("id");
+  require_new_id(id, "city");
+  require_body(req);
+  const auto parts = source_parts(req);
+  const auto extension = sniff_osm_extension(parts.osm);
+  if (extension.empty())
+    throw ApiError(415, "unsupported_format",
+                   "osm: not an OSM extract (expected OSM XML, .osm.gz, .osm.bz2 or .osm.pbf bytes)", "osm");
+  if (!parts.gtfs.empty() && parts.gtfs.substr(0, 4) != std::string_view("PK\x03\x04", 4))
+    throw ApiError(415, "unsupported_format", "gtfs: not a zip file (send the GTFS feed zipped)", "gtfs");
+  std::string fallback_name;
+  {
+    auto db = ctx.db.acquire();
+    if (auto city = store::find_city(*db, id)) fallback_name = city->name;
+  }
+  store::CitySourceImport import;
+  import.city = {id, text_param(req, "name", fallback_name), text_param(req, "attribution")};
+  if (import.city.name.empty()) throw bad("name", "a new city needs a name (?name=...)");
+  import.modes = modes_param(req);
+  import.force = query_bool(req, "force", false);
+  import.progress = progress_events(ctx);
+  UploadDir dir;
+  import.osm = dir.write(id + "." + extension, parts.osm);
+  if (!parts.gtfs.empty()) import.gtfs = dir.write(id + ".gtfs.zip", parts.gtfs);
+  return run_import([&] {
+    auto db = ctx.db.acquire();
+    return store::import_city_source(*db, import, ctx.import_limits);
+  });
+}
+
 Response put_pois(AppContext& ctx, Request& req) {
   const auto& id = req.param("id");
   require_slug(id, "city");
@@ -196,6 +265,8 @@ void add_write_routes(Router& router, AppContext& ctx) {
                    [&ctx](Request& req) { return put_metro(ctx, req); });
   router.add_write("PUT", "/api/v1/cities/{id}/pois", Exec::heavy,
                    [&ctx](Request& req) { return put_pois(ctx, req); });
+  router.add_write("PUT", "/api/v1/cities/{id}/source", Exec::heavy,
+                   [&ctx](Request& req) { return put_source(ctx, req); });
   router.add_write("PUT", "/api/v1/roads/{id}", Exec::heavy, [&ctx](Request& req) { return put_roads(ctx, req); });
 
   router.add_write("DELETE", "/api/v1/cities/{id}", Exec::heavy, [&ctx](Request& req) {

@@ -12,9 +12,31 @@
 #include "load/import_limits.hpp"
 
 #include <chrono>
+#include <functional>
+#include <memory>
+#include <mutex>
 #include <string>
 
 namespace tourmap::api {
+
+// Handlers' events for WS /api/v1/events (an import's progress). Any thread may publish; once
+// the server detaches its hub (before the hub goes) publishing does nothing.
+class EventSink {
+ public:
+  void attach(std::function<void(const std::string&)> publish) {
+    std::lock_guard lock(mutex_);
+    publish_ = std::move(publish);
+  }
+  void detach() { attach(nullptr); }
+  void publish(const std::string& message) {
+    std::lock_guard lock(mutex_);
+    if (publish_) publish_(message);
+  }
+
+ private:
+  std::mutex mutex_;
+  std::function<void(const std::string&)> publish_;
+};
 
 struct AppContext {
   store::DbPool& db;
@@ -26,6 +48,7 @@ struct AppContext {
   CrowdAssets* crowd = nullptr;  // null: the crowd scenes list without triangle counts
   CrowdLimits crowd_limits{};
   load::ImportLimits import_limits{};  // what an upload may create (PUT imports)
+  std::shared_ptr<EventSink> events = std::make_shared<EventSink>();
 };
 
 // Limits applied by the handlers (documented in openapi.yaml).

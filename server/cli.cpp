@@ -11,6 +11,7 @@
 #include "load/file.hpp"
 #include "load/import_limits.hpp"
 #include "load/load_error.hpp"
+#include "store/city_source.hpp"
 #include "store/importer.hpp"
 #include "store/manifest.hpp"
 #include "store/metro_rules.hpp"
@@ -70,6 +71,8 @@ constexpr const char* kUsage =
     "  import metro FILE...      import a city's metro network (--city, --name, --format)\n"
     "  import pois FILE          import a city's POIs (--city)\n"
     "  import roads FILE         import an OSM road extract (--id, --name)\n"
+    "  import city ID            a whole city from an OSM extract (--name, --osm; --gtfs, --modes):\n"
+    "                            transit, POIs, roads and context in one transaction\n"
     "  keys create|list|revoke   API keys for the write endpoints (imports, deletes, cache purge)\n"
     "  routes                    list the HTTP and WebSocket routes the server registers\n"
     "\n"
@@ -216,6 +219,7 @@ void print_result(const store::ImportResult& r) {
   else
     std::printf("  %-6s %-20s %s in %.2f s (version %lld)\n", r.kind.c_str(), r.target.c_str(), r.summary.c_str(),
                 r.seconds, static_cast<long long>(r.version));
+  for (const auto& warning : r.warnings) std::printf("         warning: %s\n", warning.c_str());
   std::fflush(stdout);
 }
 
@@ -232,14 +236,15 @@ load::MetroRules read_rules(const std::string& path) {
 
 int cmd_import(const std::vector<std::string>& args) {
   if (args.empty() || args[0] == "--help" || args[0] == "-h") {
-    std::printf("usage: tourmap import manifest|metro|pois|roads [options] FILE...\n");
+    std::printf("usage: tourmap import manifest|metro|pois|roads [options] FILE...\n"
+                "       tourmap import city ID --name NAME --osm EXTRACT [--gtfs FEED] [--modes MODE...]\n");
     return args.empty() ? 2 : 0;
   }
   std::string what = args[0];
   std::vector<std::string> rest(args.begin() + 1, args.end());
   Config c = default_config();
   std::vector<std::string> files;
-  std::string city, name, format = "loom", attribution, category, id, rules_file;
+  std::string city, name, format = "loom", attribution, category, id, rules_file, osm, gtfs;
   std::vector<std::string> modes;
   bool force = false;
   po::options_description desc("tourmap import " + what + " options");
@@ -266,8 +271,16 @@ int cmd_import(const std::vector<std::string>& args) {
         "name", po::value(&name)->required(), "road network name")(
         "attribution", po::value(&attribution)->default_value("© OpenStreetMap contributors (ODbL 1.0)"),
         "data attribution");
-  if (what != "manifest" && what != "metro" && what != "pois" && what != "roads") {
-    std::fprintf(stderr, "tourmap import: unknown kind '%s' (manifest, metro, pois, roads)\n", what.c_str());
+  if (what == "city")
+    desc.add_options()("name", po::value(&name)->required(), "city name")(
+        "osm", po::value(&osm)->required(),
+        "OSM extract (.osm, .osm.gz, .osm.bz2, .osm.pbf): transit routes, POIs, roads and context layers")(
+        "gtfs", po::value(&gtfs), "GTFS feed (zip or folder): the transit network instead of the extract's routes")(
+        "modes", po::value(&modes)->multitoken(),
+        "transit modes (subway light_rail tram train monorail funicular bus trolleybus ferry); default: the rail modes present, else bus")(
+        "attribution", po::value(&attribution), "attribution of the transit data (default: OpenStreetMap's)");
+  if (what != "manifest" && what != "metro" && what != "pois" && what != "roads" && what != "city") {
+    std::fprintf(stderr, "tourmap import: unknown kind '%s' (manifest, metro, pois, roads, city)\n", what.c_str());
     return 2;
   }
   desc.add(db_options(c));
@@ -285,7 +298,11 @@ int cmd_import(const std::vector<std::string>& args) {
     return 0;
   }
   if (files.empty()) {
-    std::fprintf(stderr, "tourmap import %s: no input file\n", what.c_str());
+    std::fprintf(stderr, "tourmap import %s: %s\n", what.c_str(), what == "city" ? "no city id" : "no input file");
+    return 2;
+  }
+  if (what == "city" && files.size() != 1) {
+    std::fprintf(stderr, "tourmap import city: give one city id (the sources are --osm and --gtfs)\n");
     return 2;
   }
 
@@ -297,14 +314,22 @@ int cmd_import(const std::vector<std::string>& args) {
       return 2;
     }
     auto manifest = store::parse_manifest(load::read_file(files[0]), c.data_dir);
-    std::printf("importing %zu metro networks, %zu POI sets, %zu road networks from %s\n", manifest.metros.size(),
-                manifest.pois.size(), manifest.roads.size(), c.data_dir.c_str());
+    std::printf("importing %zu metro networks, %zu POI sets, %zu road networks and %zu whole cities from %s\n",
+                manifest.metros.size(), manifest.pois.size(), manifest.roads.size(), manifest.sources.size(),
+                c.data_dir.c_str());
     store::run_manifest(db, manifest, force, print_result);
   } else if (what == "metro") {
     store::MetroImport import{{city, name, attribution}, store::parse_metro_format(format), files, force};
     if (!rules_file.empty()) import.rules = read_rules(rules_file);
     import.modes = modes;
     print_result(store::import_metro(db, import));
+  } else if (what == "city") {
+    store::CitySourceImport import{{files[0], name, attribution}, osm, gtfs, "", modes, force};
+    import.progress = [](const store::ImportProgress& p) {
+      std::printf("  [%d/%d] %s\n", p.step, p.steps, p.stage.c_str());
+      std::fflush(stdout);
+    };
+    for (const auto& r : store::import_city_source(db, import)) print_result(r);
   } else if (what == "pois") {
     if (files.size() != 1) throw std::invalid_argument("give one POI file");
     print_result(store::import_pois(db, {city, files[0], category, attribution, force}));

@@ -173,6 +173,12 @@ int serve(const Config& config, const std::function<void(unsigned short)>& on_li
     api::MetroService& metro;
     ~StopImprovements() { metro.stop_improvements(); }
   } stop_improvements{metro};
+  // Handlers publish import progress into `events` until it goes (a compute thread may outlive it).
+  ctx.events->attach([&events](const std::string& event) { events.publish(event); });
+  struct DetachEvents {
+    api::EventSink& sink;
+    ~DetachEvents() { sink.detach(); }
+  } detach_events{*ctx.events};
   api::CrowdAssets crowd_assets(config.data_dir + "/models", &db, config.crowd_max_subdivision);
   ctx.crowd = &crowd_assets;
   ctx.crowd_limits.max_streams = config.max_crowd_streams;

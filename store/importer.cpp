@@ -3,6 +3,7 @@
 #include "load/file.hpp"
 #include "load/load_error.hpp"
 #include "load/metro_load.hpp"
+#include "load/metro_gtfs.hpp"
 #include "load/metro_osm.hpp"
 #include "load/name_rules.hpp"
 #include "load/osm_context.hpp"
@@ -102,7 +103,8 @@ MetroFormat parse_metro_format(const std::string& name) {
   if (name == "station-csvs") return MetroFormat::station_csvs;
   if (name == "line-csv") return MetroFormat::line_csv;
   if (name == "osm") return MetroFormat::osm;
-  throw std::invalid_argument("unknown metro format '" + name + "' (expected loom, station-csvs, line-csv or osm)");
+  if (name == "gtfs") return MetroFormat::gtfs;
+  throw std::invalid_argument("unknown metro format '" + name + "' (expected loom, station-csvs, line-csv, osm or gtfs)");
 }
 
 std::string fingerprint_files(const std::vector<std::string>& files) {
@@ -131,7 +133,7 @@ std::string metro_fingerprint(const std::vector<std::string>& files, const load:
 }
 
 model::MetroNetwork load_metro_files(const MetroImport& req, const load::ImportLimits& limits, load::MetroLoadStats* stats,
-                                     std::string* summary) {
+                                     std::string* summary, std::vector<std::string>* warnings) {
   switch (req.format) {
     case MetroFormat::loom: return load::load_metro_loom(req.files.at(0), limits, stats);
     case MetroFormat::station_csvs:
@@ -147,11 +149,58 @@ model::MetroNetwork load_metro_files(const MetroImport& req, const load::ImportL
         if (transit.routes_without_stops > 0)
           *summary += " (" + std::to_string(transit.routes_without_stops) +
                       " with fewer than two stops in the extract, not used)";
+        *summary += "; track geometry on " + std::to_string(transit.track_edges) + " of " +
+                    std::to_string(transit.track_edges + transit.straight_edges) + " edges (" +
+                    std::to_string(transit.gaps_repaired) + " breaks between ways repaired, " +
+                    std::to_string(transit.gaps) + " gaps left)";
+        if (!transit.problems.empty())
+          *summary += "; " + std::to_string(transit.problems.size() + transit.problems_left_off) +
+                      " route problem(s), e.g. " + transit.problems.front().message;
+      }
+      if (warnings) {
+        for (const auto& p : transit.problems) warnings->push_back(p.message);
+        if (transit.problems_left_off > 0)
+          warnings->push_back("and " + std::to_string(transit.problems_left_off) + " more route problems");
+      }
+      return net;
+    }
+    case MetroFormat::gtfs: {
+      load::GtfsStats gtfs;
+      auto net = load::load_metro_gtfs(req.files.at(0), req.modes, limits, &gtfs);
+      if (summary) {
+        std::string modes;
+        for (const auto& m : gtfs.modes) modes += (modes.empty() ? "" : ", ") + m;
+        *summary = "; GTFS " + modes + ": " + std::to_string(gtfs.lines) + " of " + std::to_string(gtfs.routes) +
+                   " routes, " + std::to_string(gtfs.trips_of_modes) + " trips, " + std::to_string(gtfs.patterns) +
+                   " stop patterns, " + std::to_string(gtfs.stop_times) + " stop times";
+        if (gtfs.shapes_used > 0) *summary += ", " + std::to_string(gtfs.shapes_used) + " shapes";
+        if (gtfs.patterns_off_shape > 0)
+          *summary += " (" + std::to_string(gtfs.patterns_off_shape) + " patterns off their shape, drawn straight)";
       }
       return net;
     }
   }
   throw std::invalid_argument("unknown metro format");
+}
+
+LoadedMetro load_metro_for_import(const MetroImport& req, const load::ImportLimits& limits) {
+  load::MetroLoadStats stats;
+  std::string osm_summary;  // format osm: the modes and routes read
+  LoadedMetro out;
+  out.net = load_metro_files(req, limits, &stats, &osm_summary, &out.warnings);
+  auto& net = out.net;
+  auto cleaned = load::apply_metro_rules(net, req.rules);
+  const auto coloured = metro::assign_missing_colours(net);
+  auto close = metro::assign_line_styles(net, req.rules.min_colour_difference.value_or(metro::kMinColourDifference));
+  out.rows = net.nodes.size() + net.edges.size() + net.lines.size();
+  out.summary = std::to_string(net.station_count()) + " stations, " + std::to_string(net.nodes.size()) + " nodes, " +
+                std::to_string(net.edges.size()) + " edges, " + std::to_string(net.lines.size()) + " lines";
+  if (stats.merged_connections > 0)
+    out.summary += " (" + std::to_string(stats.merged_connections) + " of " + std::to_string(stats.connections) +
+                   " connections merged into parallel edges)";
+  out.summary += osm_summary + rules_summary(cleaned, req.rules) + styles_summary(net, close);
+  if (coloured > 0) out.summary += "; " + std::to_string(coloured) + " line(s) without a colour given distinct ones";
+  return out;
 }
 
 ImportResult import_metro(Db& db, const MetroImport& req, const load::ImportLimits& limits) {
@@ -173,24 +222,22 @@ ImportResult import_metro(Db& db, const MetroImport& req, const load::ImportLimi
     result.version = city_version(db, req.city.id).value_or(0);
     return result;
   }
-  load::MetroLoadStats stats;
-  std::string osm_summary;  // format osm: the modes and routes read
-  auto net = load_metro_files(req, limits, &stats, &osm_summary);
-  auto cleaned = load::apply_metro_rules(net, req.rules);
-  auto close = metro::assign_line_styles(net, req.rules.min_colour_difference.value_or(metro::kMinColourDifference));
-  result.rows = net.nodes.size() + net.edges.size() + net.lines.size();
+  auto loaded = load_metro_for_import(req, limits);
+  result.rows = loaded.rows;
+  result.version = save_city_metro(db, req.city, loaded.net,
+                                   {"metro", req.city.id, join_names(req.files), fp, result.rows, seconds_since(start)});
   result.seconds = seconds_since(start);
-  result.version = save_city_metro(db, req.city, net,
-                                   {"metro", req.city.id, join_names(req.files), fp, result.rows, result.seconds});
-  result.seconds = seconds_since(start);
-  result.summary = std::to_string(net.station_count()) + " stations, " + std::to_string(net.nodes.size()) +
-                   " nodes, " + std::to_string(net.edges.size()) + " edges, " + std::to_string(net.lines.size()) +
-                   " lines";
-  if (stats.merged_connections > 0)
-    result.summary += " (" + std::to_string(stats.merged_connections) + " of " + std::to_string(stats.connections) +
-                      " connections merged into parallel edges)";
-  result.summary += osm_summary + rules_summary(cleaned, req.rules) + styles_summary(net, close);
+  result.summary = std::move(loaded.summary);
+  result.warnings = std::move(loaded.warnings);
   return result;
+}
+
+void check_pois_near_city(const model::MetroNetwork& net, const std::string& city_id,
+                          const std::vector<model::Poi>& pois, const std::string& source) {
+  model::CityInfo info;
+  info.id = city_id;
+  for (const auto& n : net.nodes) info.bbox.extend(n.pos);
+  check_pois_near_city(info, pois, source);
 }
 
 ImportResult import_pois(Db& db, const PoiImport& req, const load::ImportLimits& limits) {
@@ -218,6 +265,24 @@ ImportResult import_pois(Db& db, const PoiImport& req, const load::ImportLimits&
   return result;
 }
 
+LoadedRoads load_roads_for_import(const std::string& file, const load::ImportLimits& limits) {
+  LoadedRoads out;
+  load::OsmRoadStats stats;
+  out.net = load::load_osm_roads(file, &stats, limits);
+  load::OsmContextStats context_stats;
+  out.context = load::load_osm_context(file, &context_stats, limits);
+  const auto& net = out.net;
+  const auto& context = out.context;
+  out.rows = net.nodes.size() + net.ways.size() + net.edges.size() + context.areas.size() + context.lines.size() +
+             context.places.size();
+  out.summary = std::to_string(net.nodes.size()) + " nodes, " + std::to_string(net.edges.size()) + " edges, " +
+                std::to_string(net.ways.size()) + " ways (of " + std::to_string(stats.osm_ways) +
+                " OSM ways); context: " + std::to_string(context.areas.size()) + " areas (" +
+                std::to_string(context_stats.sea_rings) + " sea), " + std::to_string(context.lines.size()) +
+                " lines, " + std::to_string(context.places.size()) + " places";
+  return out;
+}
+
 ImportResult import_roads(Db& db, const RoadImport& req, const load::ImportLimits& limits) {
   require_id(req.network.id, "road network");
   if (req.network.name.empty()) throw std::invalid_argument("road network name is empty");
@@ -231,22 +296,14 @@ ImportResult import_roads(Db& db, const RoadImport& req, const load::ImportLimit
     result.version = road_network_version(db, req.network.id).value_or(0);
     return result;
   }
-  load::OsmRoadStats stats;
-  auto net = load::load_osm_roads(req.file, &stats, limits);
-  load::OsmContextStats context_stats;
-  const auto context = load::load_osm_context(req.file, &context_stats, limits);
-  result.rows = net.nodes.size() + net.ways.size() + net.edges.size() + context.areas.size() + context.lines.size() +
-                context.places.size();
-  result.version = save_road_network(db, req.network, net,
+  auto loaded = load_roads_for_import(req.file, limits);
+  result.rows = loaded.rows;
+  result.version = save_road_network(db, req.network, loaded.net,
                                      {"roads", req.network.id, load::file_name(req.file), fp, result.rows,
                                       seconds_since(start)},
-                                     context);
+                                     loaded.context);
   result.seconds = seconds_since(start);
-  result.summary = std::to_string(net.nodes.size()) + " nodes, " + std::to_string(net.edges.size()) + " edges, " +
-                   std::to_string(net.ways.size()) + " ways (of " + std::to_string(stats.osm_ways) +
-                   " OSM ways); context: " + std::to_string(context.areas.size()) + " areas (" +
-                   std::to_string(context_stats.sea_rings) + " sea), " + std::to_string(context.lines.size()) +
-                   " lines, " + std::to_string(context.places.size()) + " places";
+  result.summary = std::move(loaded.summary);
   return result;
 }
 

@@ -20,6 +20,35 @@ std::string resolve(const std::string& data_dir, const std::string& file) {
   return data_dir + "/" + file;
 }
 
+std::vector<std::string> modes(const nlohmann::json& obj, const std::string& where) {
+  std::vector<std::string> out;
+  if (!obj.contains("modes")) return out;
+  if (!obj["modes"].is_array()) throw std::invalid_argument(where + ".modes: expected an array of strings");
+  for (const auto& mode : obj["modes"]) {
+    if (!mode.is_string()) throw std::invalid_argument(where + ".modes: expected strings");
+    out.push_back(mode.get<std::string>());
+  }
+  return out;
+}
+
+// {"id", "name", "source": {"osm", "gtfs"?, "modes"?, "attribution"?}}
+CitySourceImport parse_source(const nlohmann::json& c, const std::string& where, const std::string& data_dir) {
+  if (c.contains("metro") || c.contains("pois"))
+    throw std::invalid_argument(where + ": a city with a 'source' takes no 'metro' or 'pois' (they come from it)");
+  const auto& sj = c["source"];
+  if (!sj.is_object()) throw std::invalid_argument(where + ".source: expected an object");
+  CitySourceImport out;
+  out.city.id = str(c, "id", where);
+  out.city.name = str(c, "name", where);
+  out.osm = resolve(data_dir, str(sj, "osm", where + ".source"));
+  const auto gtfs = str(sj, "gtfs", where + ".source", false);
+  if (!gtfs.empty()) out.gtfs = resolve(data_dir, gtfs);
+  out.osm_attribution = str(sj, "attribution", where + ".source", false);
+  out.city.attribution = str(sj, "transit_attribution", where + ".source", false);
+  out.modes = modes(sj, where + ".source");
+  return out;
+}
+
 }  // namespace
 
 Manifest parse_manifest(const std::string& json_text, const std::string& data_dir) {
@@ -33,6 +62,10 @@ Manifest parse_manifest(const std::string& json_text, const std::string& data_di
   Manifest m;
   for (const auto& c : doc.value("cities", nlohmann::json::array())) {
     std::string where = "cities[" + str(c, "id", "cities[]") + "]";
+    if (c.contains("source")) {
+      m.sources.push_back(parse_source(c, where, data_dir));
+      continue;
+    }
     MetroImport metro;
     metro.city.id = str(c, "id", where);
     metro.city.name = str(c, "name", where);
@@ -47,13 +80,7 @@ Manifest parse_manifest(const std::string& json_text, const std::string& data_di
       metro.files.push_back(resolve(data_dir, f.get<std::string>()));
     }
     if (mj.contains("rules")) metro.rules = parse_metro_rules(mj["rules"], where + ".metro.rules");
-    if (mj.contains("modes")) {
-      if (!mj["modes"].is_array()) throw std::invalid_argument(where + ".metro.modes: expected an array of strings");
-      for (const auto& mode : mj["modes"]) {
-        if (!mode.is_string()) throw std::invalid_argument(where + ".metro.modes: expected strings");
-        metro.modes.push_back(mode.get<std::string>());
-      }
-    }
+    metro.modes = modes(mj, where + ".metro");
     m.metros.push_back(metro);
     if (c.contains("pois")) {
       const auto& pj = c["pois"];
@@ -96,6 +123,10 @@ std::vector<ImportResult> run_manifest(Db& db, const Manifest& manifest, bool fo
   for (auto road : manifest.roads) {
     road.force = force;
     done(import_roads(db, road, limits));
+  }
+  for (auto source : manifest.sources) {
+    source.force = force;
+    for (auto& r : import_city_source(db, source, limits)) done(std::move(r));
   }
   return results;
 }

@@ -6,10 +6,15 @@
 //              "metro": {"format": "loom", "files": ["metro/loom_wien.json"], "attribution": "...",
 //                        "rules": {"strip_suffixes": [" (Wien)"], ...}},
 //              "pois": {"file": "poi/x.json", "category": "sight", "attribution": "..."}}],
-//  "roads": [{"id": "monaco", "name": "Monaco", "file": "roads/monaco.osm.gz", "attribution": "..."}]}
+//              {"id": "monaco", "name": "Monaco",
+//               "source": {"osm": "roads/monaco.osm.gz", "gtfs": "...", "modes": ["bus"], "attribution": "..."}}],
+//  "roads": [{"id": "krems", "name": "Krems", "file": "roads/krems.osm.gz", "attribution": "..."}]}
 //
-// "rules" (optional) clean the city's names and lines at import: store/metro_rules.hpp.
+// "rules" (optional) clean the city's names and lines at import: store/metro_rules.hpp. A city
+// with a "source" instead of "metro" and "pois" is imported whole from open data
+// (store/city_source.hpp: transit, POIs, and the road network of its id with the context).
 
+#include "city_source.hpp"
 #include "importer.hpp"
 
 #include <functional>
@@ -22,6 +27,7 @@ struct Manifest {
   std::vector<MetroImport> metros;
   std::vector<PoiImport> pois;
   std::vector<RoadImport> roads;
+  std::vector<CitySourceImport> sources;
 };
 
 // Parses the manifest text; relative file paths are resolved against `data_dir`.

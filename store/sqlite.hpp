@@ -94,6 +94,8 @@ class Db {
   std::int64_t changes() const;
   const std::string& path() const { return path_; }
   sqlite3* handle() { return db_; }
+  // True inside BEGIN ... COMMIT/ROLLBACK.
+  bool in_transaction() const;
 
  private:
   sqlite3* db_ = nullptr;
@@ -101,7 +103,10 @@ class Db {
   std::map<std::string, Stmt, std::less<>> cached_;  // finalized before the connection closes
 };
 
-// BEGIN IMMEDIATE on construction; ROLLBACK on destruction unless commit() ran.
+// BEGIN IMMEDIATE on construction; ROLLBACK on destruction unless commit() ran. Inside another
+// transaction of the same connection it is a SAVEPOINT instead (released by commit(), rolled
+// back to on destruction), so writes that each run in a transaction can be composed into one
+// (store/city_source.cpp writes a city's transit, POIs and roads together).
 class Transaction {
  public:
   explicit Transaction(Db& db);
@@ -113,6 +118,7 @@ class Transaction {
  private:
   Db& db_;
   bool done_ = false;
+  bool nested_ = false;
 };
 
 // BEGIN (deferred) for a consistent multi-statement read; COMMIT on destruction.

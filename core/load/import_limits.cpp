@@ -19,10 +19,17 @@ void for_each_limit(ImportLimits& l, F&& f) {
   f("max_osm_nodes", l.max_osm_nodes, "count");
   f("max_osm_ways", l.max_osm_ways, "count");
   f("max_osm_relations", l.max_osm_relations, "count");
+  f("max_osm_track_points", l.max_osm_track_points, "count");
   f("max_road_nodes", l.max_road_nodes, "count");
   f("max_road_ways", l.max_road_ways, "count");
   f("max_road_edges", l.max_road_edges, "count");
   f("max_context_points", l.max_context_points, "count");
+  f("max_gtfs_file_bytes", l.max_gtfs_file_bytes, "bytes");
+  f("max_gtfs_rows", l.max_gtfs_rows, "count");
+  f("max_gtfs_stops", l.max_gtfs_stops, "count");
+  f("max_gtfs_trips", l.max_gtfs_trips, "count");
+  f("max_gtfs_buffered_stop_times", l.max_gtfs_buffered_stop_times, "count");
+  f("max_gtfs_shape_points", l.max_gtfs_shape_points, "count");
   f("max_id_bytes", l.max_id_bytes, "bytes");
   f("max_name_bytes", l.max_name_bytes, "bytes");
   f("max_url_bytes", l.max_url_bytes, "bytes");

@@ -62,6 +62,14 @@ struct ImportLimits {
   // multipolygons of the kinds it draws, and their member ways, until they are assembled).
   // Sample data: at most 358 (Liechtenstein); a big city's extract has some 10^5.
   std::size_t max_osm_relations = 1'000'000;
+  // Track of the transit routes read from an extract (metro_osm.hpp), counted as work: the
+  // routes' way members (one each), the node positions of those ways held while the file is read
+  // (8 bytes each), the positions of each route's track assembled from them (a way used by
+  // several routes counts for each), and the positions gone over again to repair breaks, place
+  // the stations on the track and simplify the edges. Sample data: at most 105,619
+  // (Liechtenstein's 16 bus routes, ~7,000 a route). A big city's bus and rail routes (some 10^3
+  // relations) ~10^7. At the limit, at most 400 MB of positions are held.
+  std::size_t max_osm_track_points = 50'000'000;
   // What the road network keeps (stored, then loaded and deformed by reads). Sample data: at
   // most 54,374 nodes, 4,658 ways and 56,000 edges (Liechtenstein); a big city's roads, paths
   // and tracks are on the order of 10^6 nodes.
@@ -73,6 +81,28 @@ struct ImportLimits {
   // Sample data: at most 76,929 (Liechtenstein, 9,000 buildings); a big city's buildings and
   // land use have on the order of 10^7.
   std::size_t max_context_points = 20'000'000;
+
+  // --- GTFS feeds (metro_gtfs.hpp; the line graph they give is bounded by max_metro_*) ---
+  // Bytes of one feed file as read, after decompression from the zip (stop_times.txt of a big
+  // city's feed: ~200 MB, at ~58 bytes a row). Bounds a zip bomb, and with max_gtfs_rows the
+  // time spent in one file.
+  std::uint64_t max_gtfs_file_bytes = std::uint64_t{2} << 30;
+  // Records of one feed file, header and blank lines included (~3.5 M stop_times rows in
+  // 200 MB). A stop_times row costs ~0.4 us (bench/gtfs_bench: 2.5 M rows/s), so this bounds a
+  // file to ~20 s.
+  std::size_t max_gtfs_rows = 50'000'000;
+  // Rows of stops.txt and trips.txt (and of routes.txt, against max_gtfs_trips: a route needs a
+  // trip): each is held while the feed is read (~150 bytes with its id and hash entry). Big city
+  // feeds have 10^4-10^5 stops and trips.
+  std::size_t max_gtfs_stops = 1'000'000;
+  std::size_t max_gtfs_trips = 1'000'000;
+  // stop_times rows held at once (8 bytes each): the rows of the trip being read, the stations
+  // of the distinct stop patterns, and, when stop_times.txt is not grouped by trip, the rows of
+  // the trips spread over the file (a grouped file holds one trip at a time).
+  std::size_t max_gtfs_buffered_stop_times = 20'000'000;
+  // shapes.txt positions held for the shapes the network uses (24 bytes each); a city's shapes
+  // have 10^5-10^6.
+  std::size_t max_gtfs_shape_points = 10'000'000;
 
   // --- text fields (UTF-8 bytes) ---
   // Ids: POI ids, metro node/station ids, line ids and colours. Sample data: at most 15 bytes;

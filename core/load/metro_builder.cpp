@@ -104,6 +104,22 @@ std::uint32_t MetroBuilder::add_edge(model::MetroEdge edge, const std::string& w
   return index;
 }
 
+bool MetroBuilder::replace_straight_geometry(std::uint32_t a, std::uint32_t b, std::vector<geo::LonLat> geometry,
+                                             const std::string& where) {
+  if (geometry.size() < 2) throw LoadError(where, "edge geometry of fewer than two points");
+  for (const auto& p : geometry)
+    if (!geo::is_valid(p)) throw LoadError(where, "invalid coordinates in edge geometry");
+  const auto index = find_edge(a, b);
+  if (index == kNoEdge || net_.edges[index].geometry.size() > 2) return false;
+  auto& edge = net_.edges[index];
+  geometry_points_ += geometry.size() - edge.geometry.size();
+  check_limit(geometry_points_, limits_.max_metro_geometry_points, "max_metro_geometry_points", where,
+              "edge geometry positions");
+  if (edge.from != a) std::reverse(geometry.begin(), geometry.end());
+  edge.geometry = std::move(geometry);
+  return true;
+}
+
 model::MetroNetwork MetroBuilder::finish(const std::string& source) && {
   if (net_.station_count() == 0) throw LoadError(source, "no stations");
   return std::move(net_);

@@ -13,6 +13,7 @@
 #include <unordered_map>
 #include <unordered_set>
 #include <utility>
+#include <vector>
 
 namespace tourmap::load {
 
@@ -36,6 +37,14 @@ class MetroBuilder {
   // same two nodes as an earlier one is merged into it: the earlier edge keeps its geometry
   // and gets the union of the lines. Returns the index of the edge.
   std::uint32_t add_edge(model::MetroEdge edge, const std::string& where);
+  // Gives the edge between a and b the track `geometry`, which runs from a to b (it is stored
+  // reversed when the edge runs from b to a), if its geometry is still straight (the two points
+  // connect() gives it): a loader that learns the track after connecting (metro_osm) keeps the
+  // first real geometry. Returns false, changing nothing, when there is no such edge or its
+  // geometry has more than two points. Throws LoadError on fewer than two points or invalid
+  // coordinates, LimitExceeded beyond max_metro_geometry_points.
+  bool replace_straight_geometry(std::uint32_t a, std::uint32_t b, std::vector<geo::LonLat> geometry,
+                                 const std::string& where);
 
   // Connection records seen and how many of them were merged into an existing edge.
   const MetroLoadStats& stats() const { return stats_; }

@@ -115,6 +115,36 @@ std::string describe_style(const model::LineStyle& style) {
   return out;
 }
 
+// Sasha Trubetskoy's "20 distinct colours" without the ones too light for thin strokes on a light
+// background (yellow, lime, pink, lavender, beige, mint, apricot, white) plus two darker ones.
+constexpr const char* kPalette[] = {"e6194b", "3cb44b", "4363d8", "f58231", "911eb4", "42d4f4", "f032e6",
+                                    "469990", "9a6324", "800000", "808000", "000075", "a9a9a9", "1b7837"};
+
+std::size_t assign_missing_colours(model::MetroNetwork& net) {
+  std::vector<Lab> used;
+  for (const auto& line : net.lines)
+    if (auto lab = lab_from_hex(line.color)) used.push_back(*lab);
+  std::size_t assigned = 0;
+  for (auto& line : net.lines) {
+    if (lab_from_hex(line.color)) continue;
+    const char* best = kPalette[assigned % std::size(kPalette)];
+    double best_gap = -1;
+    for (const char* hex : kPalette) {
+      const auto lab = *lab_from_hex(hex);
+      double gap = 1e9;
+      for (const auto& u : used) gap = std::min(gap, delta_e2000(lab, u));
+      if (gap > best_gap) {
+        best_gap = gap;
+        best = hex;
+      }
+    }
+    line.color = best;
+    used.push_back(*lab_from_hex(best));
+    ++assigned;
+  }
+  return assigned;
+}
+
 std::vector<CloseGroup> assign_line_styles(model::MetroNetwork& net, double min_difference) {
   const auto n = static_cast<std::uint32_t>(net.lines.size());
   std::vector<std::optional<Lab>> lab(n);
@@ -146,6 +176,8 @@ std::vector<CloseGroup> assign_line_styles(model::MetroNetwork& net, double min_
   }
   std::sort(groups.begin(), groups.end(),
             [](const CloseGroup& a, const CloseGroup& b) { return a.lines.front() < b.lines.front(); });
+  for (std::uint32_t l = 0; l < n; ++l)
+    if (lab[l] && lab[l]->L > kMaxPlainLightness) net.lines[l].style.casing = true;
   return groups;
 }
 

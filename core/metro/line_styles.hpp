@@ -49,9 +49,21 @@ struct CloseGroup {
   std::vector<std::uint32_t> lines;  // indices into MetroNetwork::lines
 };
 
+// Lines without a valid colour (OSM routes and GTFS routes often have none) get one from a
+// palette of distinct colours that read on a light map: each, in line order, the palette
+// colour farthest (CIEDE2000) from every colour the map already has. Returns how many.
+// Deterministic. Runs before assign_line_styles.
+std::size_t assign_missing_colours(model::MetroNetwork& net);
+
+// Lines lighter than this (CIELAB L*) vanish on the light map (Liechtenstein's white bus 40;
+// yellows such as London's Circle line, L* 89, stay plain):
+// they are drawn with a casing whatever their group.
+inline constexpr double kMaxPlainLightness = 92.0;
+
 // Resets every line's style, then styles the lines of each close group: the line on the most
 // edges (then the first in the line list) stays plain, the others take distinct_styles() in
-// the same order. Lines without a valid colour take no part. Deterministic: the same network
+// the same order; lines lighter than kMaxPlainLightness get a casing too. Lines without a
+// valid colour take no part. Deterministic: the same network
 // gets the same styles. `min_difference` 0 leaves every line plain.
 std::vector<CloseGroup> assign_line_styles(model::MetroNetwork& net, double min_difference = kMinColourDifference);
 

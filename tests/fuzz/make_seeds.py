@@ -380,6 +380,23 @@ def main():
         "line,name,colour,stripe\n1,Bakerloo Line,ab6612,NULL\n2,Central Line,#dc241f,NULL\n"
         "\n====\n"
         "station1,station2,line,time\n1,2,1,4\n2,3,2,2\n3,1,1,1\n")
+    # --- GTFS: stops, routes, trips, stop_times, shapes (a parent station, CRLF, a quoted comma,
+    # a shape, a rail and a bus route)
+    put("metro_gtfs", "liechtenstein_bus_and_rail.txt",
+        "stop_id,stop_name,stop_lat,stop_lon,location_type,parent_station\r\n"
+        "S1,\"Schaan, Bahnhof\",47.1656,9.5094,1,\r\np1,Schaan 1,47.1657,9.5095,0,S1\r\n"
+        "v,Vaduz Post,47.1399,9.5215,,\r\nb,Balzers,47.0667,9.5028,,\r\n"
+        "\n====\n"
+        "route_id,route_short_name,route_long_name,route_type,route_color\n11,11,,3,E2001A\nR,,Rail,2,\n"
+        "\n====\n"
+        "route_id,service_id,trip_id,shape_id\n11,d,t1,sh1\n11,d,t2,\nR,d,t3,\n"
+        "\n====\n"
+        "trip_id,arrival_time,departure_time,stop_id,stop_sequence\n"
+        "t1,08:00:00,08:00:00,p1,1\nt1,08:10:00,08:10:00,v,2\nt1,08:25:00,08:25:00,b,3\n"
+        "t2,09:00:00,09:00:00,b,1\nt2,09:15:00,09:15:00,v,2\nt3,10:00:00,10:00:00,S1,1\nt3,10:20:00,10:20:00,b,2\n"
+        "\n====\n"
+        "shape_id,shape_pt_lat,shape_pt_lon,shape_pt_sequence\n"
+        "sh1,47.1657,9.5095,1\nsh1,47.15,9.515,2\nsh1,47.1399,9.5215,3\nsh1,47.1,9.51,4\nsh1,47.0667,9.5028,5\n")
     # --- POIs: first byte picks the file name: 0 .csv, 1 .json, 2 .geojson, 3 .js
     put("pois", "csv.txt", "0name,lon,lat,category,rank,popularity,url,id\n"
         "Opera,16.369,48.203,sight,1,0.9,\"https://a.example, https://b.example\",op\n"

@@ -176,7 +176,7 @@ TEST(Writes, ImportCityFromAnOsmExtract) {
   EXPECT_NE(summary.find("OSM train, bus: 20 routes"), std::string::npos) << summary;
   const auto city = live.get_json("/api/v1/cities/li");
   EXPECT_GE(city["counts"]["stations"].get<int>(), 20);
-  EXPECT_EQ(city["counts"]["lines"], 5);
+  EXPECT_EQ(city["counts"]["lines"], 16);  // 2 train lines (REX, S2), 14 bus lines
   r = http_request(live.port(), "PUT", "/api/v1/cities/li/pois", bearer(key), bytes);
   ASSERT_EQ(r.status, 200) << r.body;
   EXPECT_EQ(live.get_json("/api/v1/cities/li/pois")["matched"], 26);

@@ -88,7 +88,7 @@ TEST(ImportLimits, ListedByNameAndSettable) {
     EXPECT_GT(l.value, 0u) << l.name;
     EXPECT_TRUE(l.unit == "count" || l.unit == "bytes") << l.name;
   }
-  EXPECT_EQ(all.size(), 21u);
+  EXPECT_EQ(all.size(), 28u);
   EXPECT_TRUE(names.count("max_pois"));
   EXPECT_TRUE(set_limit(limits, "max_pois", 7));
   EXPECT_EQ(limits.max_pois, 7u);

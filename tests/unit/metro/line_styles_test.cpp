@@ -66,6 +66,30 @@ model::MetroNetwork lines_with_colours(const std::vector<std::string>& colours, 
   return net;
 }
 
+TEST(LineStyles, LinesWithoutAColourGetDistinctOnes) {
+  // Five uncoloured lines (Monaco's buses) beside a red one: five valid colours, all unlike each
+  // other and the red, so no line needs a casing or a dash; coloured lines keep theirs.
+  auto net = lines_with_colours({"e2001a", "", "", "not a colour", "", ""}, {1, 1, 1, 1, 1, 1});
+  EXPECT_EQ(assign_missing_colours(net), 5u);
+  EXPECT_EQ(net.lines[0].color, "e2001a");
+  for (std::size_t i = 0; i < net.lines.size(); ++i) {
+    ASSERT_TRUE(lab_from_hex(net.lines[i].color)) << net.lines[i].color;
+    for (std::size_t j = 0; j < i; ++j)
+      EXPECT_GE(delta_e2000(*lab_from_hex(net.lines[i].color), *lab_from_hex(net.lines[j].color)), kMinColourDifference)
+          << net.lines[i].color << " vs " << net.lines[j].color;
+  }
+  EXPECT_TRUE(assign_line_styles(net).empty());
+  EXPECT_EQ(assign_missing_colours(net), 0u);  // all coloured now
+}
+
+TEST(LineStyles, WhiteLinesGetACasing) {
+  auto net = lines_with_colours({"ffffff", "e2001a", "fff5cc"}, {1, 1, 1});
+  EXPECT_TRUE(assign_line_styles(net).empty());
+  EXPECT_TRUE(net.lines[0].style.casing);
+  EXPECT_TRUE(net.lines[1].style.plain());
+  EXPECT_TRUE(net.lines[2].style.casing);
+}
+
 TEST(LineStyles, AllButTheBusiestLineOfAGroupGetAStyle) {
   // 0 and 2 identical, 1 far apart; 2 runs on more edges, so 0 gets the casing.
   auto net = lines_with_colours({"815238", "ffd500", "815238"}, {2, 5, 4});

@@ -46,5 +46,44 @@ TEST(Sqlite, CachedStatementReleasesItsSnapshot) {
   EXPECT_EQ(read_a(), 10);
 }
 
+// A transaction inside another is a savepoint: its rollback undoes only its own writes, its
+// commit holds only if the outer one commits.
+TEST(Sqlite, NestedTransactionIsASavepoint) {
+  test::TempDir dir;
+  Db db(dir.file("t.db"));
+  db.exec("CREATE TABLE t (v INTEGER)");
+  auto count = [&] {
+    auto st = db.prepare("SELECT COUNT(*) FROM t");
+    EXPECT_TRUE(st.step());
+    return st.int64(0);
+  };
+  {
+    Transaction outer(db);
+    db.exec("INSERT INTO t VALUES (1)");
+    {
+      Transaction inner(db);
+      db.exec("INSERT INTO t VALUES (2)");
+    }  // rolled back to the savepoint
+    EXPECT_EQ(count(), 1);
+    {
+      Transaction inner(db);
+      db.exec("INSERT INTO t VALUES (3)");
+      inner.commit();
+    }
+    EXPECT_TRUE(db.in_transaction());
+    EXPECT_EQ(count(), 2);
+  }  // the outer one rolls everything back
+  EXPECT_FALSE(db.in_transaction());
+  EXPECT_EQ(count(), 0);
+  {
+    Transaction outer(db);
+    Transaction inner(db);
+    db.exec("INSERT INTO t VALUES (4)");
+    inner.commit();
+    outer.commit();
+  }
+  EXPECT_EQ(count(), 1);
+}
+
 }  // namespace
 }  // namespace tourmap::store

@@ -10,6 +10,8 @@ export interface MapOptionsState {
   solver: LayoutSolverKind;
   heat: boolean;
   grid: boolean;
+  /** The streets warped into the layout, under the octilinear map (when the city has a road network). */
+  roads: boolean;
   pois: PoiMode;
 }
 
@@ -18,6 +20,7 @@ export interface MapOptionsHandlers {
   onLayoutParams(): void;
   onHeat(visible: boolean): void;
   onGrid(visible: boolean): void;
+  onRoads(visible: boolean): void;
   onPoiMode(mode: PoiMode): void;
 }
 
@@ -47,7 +50,15 @@ function segmented<T extends string>(
  */
 export class MapOptions {
   readonly element: HTMLElement;
-  readonly state: MapOptionsState = { mode: 'geographic', lengths: 'visual-worth', solver: 'auto', heat: false, grid: false, pois: 'clusters' };
+  readonly state: MapOptionsState = {
+    mode: 'geographic',
+    lengths: 'visual-worth',
+    solver: 'auto',
+    heat: false,
+    grid: false,
+    roads: true,
+    pois: 'clusters',
+  };
   private readonly mode;
   private readonly poiMode;
   private readonly lengths: HTMLSelectElement;
@@ -55,6 +66,8 @@ export class MapOptions {
   private readonly heat: HTMLInputElement;
   private readonly heatGroup: HTMLElement;
   private readonly grid: HTMLInputElement;
+  private readonly roads: HTMLInputElement;
+  private readonly roadsGroup: HTMLElement;
   private readonly poiGroup: HTMLElement;
 
   constructor(handlers: MapOptionsHandlers) {
@@ -107,6 +120,17 @@ export class MapOptions {
       this.state.grid = this.grid.checked;
       handlers.onGrid(this.grid.checked);
     });
+    this.roads = h('input', { type: 'checkbox', 'data-testid': 'roads-toggle', checked: true });
+    this.roads.addEventListener('change', () => {
+      this.state.roads = this.roads.checked;
+      handlers.onRoads(this.roads.checked);
+    });
+    this.roadsGroup = h(
+      'label',
+      { class: 'option-inline check-inline', title: 'The streets warped into the octilinear layout, drawn faintly under it when you zoom in' },
+      this.roads,
+      'Streets',
+    );
     this.poiMode = segmented<PoiMode>(
       'Places of interest',
       'poi-mode',
@@ -130,6 +154,7 @@ export class MapOptions {
       h('label', { class: 'option-inline', for: 'layout-solver' }, h('span', { class: 'field' }, 'Solver'), this.solver),
       this.heatGroup,
       h('label', { class: 'option-inline check-inline', title: 'The mesh that shows how the layout moved space around' }, this.grid, 'Warp grid'),
+      this.roadsGroup,
       this.poiGroup,
     );
     this.setMode('geographic');
@@ -149,6 +174,14 @@ export class MapOptions {
     this.state.solver = solver;
     this.lengths.value = lengths;
     this.solver.value = solver;
+  }
+
+  /**
+   * The streets switch only for a city with a road network (a 404 for its layout's roads hides
+   * it); unknown until asked, it is offered.
+   */
+  setHasRoads(has: boolean): void {
+    this.roadsGroup.hidden = !has;
   }
 
   /**

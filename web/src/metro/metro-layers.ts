@@ -104,6 +104,8 @@ const CASING_MARGIN_PX = 3.5;
 export class MetroLayers {
   readonly geo: Geometry;
   readonly heatLayer: SVGGElement;
+  /** The streets in the schematic's space (RoadsLayer fills it): over the heat map, under the mesh and lines. */
+  readonly roadLayer: SVGGElement;
   readonly clusterLayer: SVGGElement;
   private readonly stations = new Map<string, Marked<StationFeature> & StationMarker & { label: Label }>();
   private serverLabels: ServerLabels | null = null;
@@ -151,6 +153,7 @@ export class MetroLayers {
     const stationFeatures = metro.features.filter((f): f is StationFeature => f.properties.kind === 'station');
 
     this.heatLayer = map.addLayer('heat', 'world');
+    this.roadLayer = map.addLayer('roads', 'world');
     this.gridPath = svg('path', { class: 'warp-grid' });
     map.addLayer('grid', 'world').append(this.gridPath);
     this.casingLayer = map.addLayer('casing', 'world');

@@ -38,6 +38,7 @@ import { LayoutInfo } from '../metro/layout-info';
 import { Legend } from '../metro/legend';
 import { MapOptions, type MapMode } from '../metro/map-options';
 import { MetroLayers, type MetroPick, type ServerLabels } from '../metro/metro-layers';
+import { fetchLayoutRoads, RoadsLayer, type LayoutRoadsResponse } from '../metro/roads-layer';
 import { carry, easeInOutCubic, geometryBounds, Morph, type Geometry, type Pt } from '../metro/morph';
 import { attributionBox, showAttribution } from '../ui/attribution';
 import { DetailsPanel } from '../ui/details-panel';
@@ -84,6 +85,8 @@ interface LayoutEntry extends LayoutAnswer {
   labels: ServerLabels | null;
   /** The heat map of the whole mesh (asked for once, when first shown). */
   heat?: Promise<VisualWorthRaster>;
+  /** The streets warped into this layout (asked for once, when first shown); null: the city has no road network. */
+  roads?: Promise<LayoutRoadsResponse | null>;
 }
 
 /**
@@ -94,7 +97,8 @@ interface LayoutEntry extends LayoutAnswer {
  * The map element reports data-status (loading, ready, error) and data-city (drawn), data-mode
  * (geographic, octilinear: the drawing shown once a morph is over), data-transition (running,
  * idle), data-layout (loading, ready, error), data-layout-solver (the drawn layout's solver:
- * fast, mip) and data-layout-swaps (improved layouts swapped in) for tests.
+ * fast, mip), data-layout-swaps (improved layouts swapped in) and data-roads (the streets under
+ * the layout: loading, ready, none (no road network), off, error) for tests.
  */
 export class MetroView implements View {
   readonly element: HTMLElement;
@@ -115,6 +119,12 @@ export class MetroView implements View {
   private layers?: MetroLayers;
   private clusters?: ClusterLayer;
   private heat?: HeatLayer;
+  private roads?: RoadsLayer;
+  /** Whether the city has a road network for its layout's streets (undefined: not asked yet). */
+  private hasRoads?: boolean;
+  private roadsRequest = 0;
+  /** The data credits of the city drawn; the road network's join them while its streets are drawn. */
+  private baseAttribution: string[] = [];
   private frame?: Frame;
   private city?: CitySummary;
   private context?: DetailsContext;
@@ -161,6 +171,7 @@ export class MetroView implements View {
         this.layers?.setGridVisible(visible);
         this.describeGrid();
       },
+      onRoads: () => this.updateRoads(),
       onPoiMode: () => this.applyPoiMode(),
     });
     this.details = new DetailsPanel(() => this.pick(null));
@@ -266,7 +277,8 @@ export class MetroView implements View {
       this.clearMap();
       // Legend and attribution first: fitting the map keeps clear of them.
       this.legend.show(metro.lines, pois.features.length, city.poi_categories);
-      showAttribution(this.attribution, [...city.attribution, ...metro.attribution, ...pois.attribution]);
+      this.baseAttribution = [...city.attribution, ...metro.attribution, ...pois.attribution];
+      showAttribution(this.attribution, this.baseAttribution);
       const frame = frameFor(extendBBox(city.bbox, pois.features.map((poi) => poi.geometry.coordinates)));
       this.map.setFitBounds(null);
       this.map.setFrame(frame);
@@ -274,6 +286,9 @@ export class MetroView implements View {
       this.city = summary;
       this.layers = new MetroLayers(this.map, frame, metro, pois.features, (pick) => this.pick(pick));
       this.heat = new HeatLayer(this.layers.heatLayer);
+      this.roads = new RoadsLayer(this.map, this.layers.roadLayer, (drawn) => this.creditRoads(drawn));
+      this.hasRoads = undefined;
+      this.options.setHasRoads(true);
       this.clusters = new ClusterLayer(
         this.map,
         this.layers.clusterLayer,
@@ -344,6 +359,10 @@ export class MetroView implements View {
     this.clusters?.destroy();
     this.clusters = undefined;
     this.heat = undefined;
+    this.roads?.destroy();
+    this.roads = undefined;
+    this.roadsRequest++;
+    this.baseAttribution = [];
     this.layers?.destroy();
     this.layers = undefined;
     this.frame = undefined;
@@ -361,6 +380,7 @@ export class MetroView implements View {
     const data = this.map.element.dataset;
     delete data.city;
     delete data.layout;
+    delete data.roads;
     data.mode = 'geographic';
     data.transition = 'idle';
   }
@@ -544,6 +564,8 @@ export class MetroView implements View {
     this.heatShown = undefined;
     this.info.setPlaces(null);
     this.info.setHeat(null);
+    // The streets belong to one layout: off while the drawing moves.
+    this.roads?.setVisible(false);
 
     const from = layers.geometry;
     const morph = new Morph(from, target);
@@ -587,6 +609,7 @@ export class MetroView implements View {
       data.mode = mode;
       data.transition = 'idle';
       this.describeGrid();
+      this.updateRoads();
       this.map.settle();
     };
     this.animation = requestAnimationFrame(step);
@@ -605,6 +628,57 @@ export class MetroView implements View {
           ? 'Warp grid: a regular 21 × 21 mesh and the network’s outline, warped with the layout: where cells grew, space went to places worth seeing.'
           : 'Warp grid: the regular mesh (and the network’s outline) that the octilinear layout warps.',
     );
+  }
+
+  // ---- The streets under the octilinear map ----
+
+  /**
+   * The streets warped into the layout drawn (GET /cities/{id}/layout/roads with its
+   * parameters): asked for once per layout, the first time the octilinear map is drawn with the
+   * switch on; shown while that map is drawn and the switch is on (RoadsLayer fades them in at
+   * close zoom). A city without a road network (404) loses the switch.
+   */
+  private updateRoads(): void {
+    const { roads: layer, city, shownLayout: layout } = this;
+    const data = this.map.element.dataset;
+    const octilinear = this.drawnMode === 'octilinear' && !this.morphing && this.options.state.mode === 'octilinear';
+    if (!layer || !city || !layout || !octilinear || !this.options.state.roads || this.hasRoads === false) {
+      layer?.setVisible(false);
+      if (layer) data.roads = this.hasRoads === false ? 'none' : 'off';
+      return;
+    }
+    const request = ++this.roadsRequest;
+    data.roads = 'loading';
+    layout.roads ??= fetchLayoutRoads(city.id, layout.params, this.cityLoad?.signal);
+    layout.roads.then(
+      (answer) => {
+        if (request !== this.roadsRequest || this.roads !== layer || this.shownLayout !== layout) return;
+        if (!answer) {
+          this.hasRoads = false;
+          this.options.setHasRoads(false);
+          layer.clear();
+          data.roads = 'none';
+          return;
+        }
+        this.hasRoads = true;
+        this.notice.clear('roads');
+        layer.show(answer, layout.placement);
+        layer.setVisible(this.drawnMode === 'octilinear' && !this.morphing && this.options.state.roads);
+        data.roads = 'ready';
+      },
+      (error: unknown) => {
+        layout.roads = undefined;
+        if (isAbort(error) || request !== this.roadsRequest || this.roads !== layer) return;
+        data.roads = 'error';
+        this.notice.error('roads', `Could not load the streets under the layout of ${city.name}`, error, () => this.updateRoads());
+      },
+    );
+  }
+
+  /** The road data's credit joins the attribution line while its streets are on screen. */
+  private creditRoads(drawn: boolean): void {
+    const roads = this.roads?.roads;
+    showAttribution(this.attribution, drawn && roads ? [...this.baseAttribution, ...roads.attribution] : this.baseAttribution);
   }
 
   // ---- Clusters and heat map, for the window shown ----
