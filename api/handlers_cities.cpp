@@ -4,6 +4,7 @@
 #include "geojson_in.hpp"
 #include "params.hpp"
 #include "routes.hpp"
+#include "schematic_roads.hpp"
 
 #include "store/repo.hpp"
 
@@ -52,6 +53,8 @@ void add_city_routes(Router& router, AppContext& ctx) {
     for (const auto& p : city->pois)
       if (!p.category.empty()) categories.insert(p.category);
     body["poi_categories"] = categories;
+    const auto roads = covering_road_network(ctx.catalog, *city);
+    body["road_network"] = roads.empty() ? nlohmann::json(nullptr) : nlohmann::json(roads);
     return cacheable(json_response(body));
   });
 

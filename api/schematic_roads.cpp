@@ -130,6 +130,25 @@ std::string roads_body(const CityMetroData& data, const RoadNetworkEntry& roads,
 
 }  // namespace
 
+std::string covering_road_network(Catalog& catalog, const model::City& city) {
+  // From the store's list (ids and boxes), not the catalog: no road network is loaded for this.
+  const auto& nodes = city.metro.nodes;
+  std::size_t stations = 0;
+  for (const auto& node : nodes) stations += node.is_station();
+  std::string best;
+  std::size_t best_count = 0;
+  auto db = catalog.pool().acquire();
+  for (const auto& info : store::list_road_networks(*db)) {
+    if (info.id == city.info.id) return info.id;
+    const auto n = stations_inside(nodes, info.bbox);
+    if (n > best_count) {
+      best = info.id;
+      best_count = n;
+    }
+  }
+  return best_count == 0 || 2 * best_count < stations ? "" : best;
+}
+
 SchematicRoadsService::SchematicRoadsService(Catalog& catalog, MetroService& metro, SchematicRoadsLimits limits)
     : catalog_(catalog), metro_(metro), limits_(limits), results_(limits.result_cache_bytes) {}
 
@@ -142,24 +161,8 @@ std::shared_ptr<const RoadNetworkEntry> SchematicRoadsService::road_network_for(
     if (!entry) throw not_found("roads", "road network", *asked);
     return entry;
   }
-  if (auto same = catalog_.road_network(city.id)) return same;
-  // The network holding the most stations, at least half of them.
-  const auto& nodes = data.city->metro.nodes;
-  std::size_t stations = 0;
-  for (const auto& node : nodes) stations += node.is_station();
-  std::string best;
-  std::size_t best_count = 0;
-  {
-    auto db = catalog_.pool().acquire();
-    for (const auto& info : store::list_road_networks(*db)) {
-      const auto n = stations_inside(nodes, info.bbox);
-      if (n > best_count) {
-        best = info.id;
-        best_count = n;
-      }
-    }
-  }
-  if (best_count == 0 || 2 * best_count < stations)
+  const auto best = covering_road_network(catalog_, *data.city);
+  if (best.empty())
     throw ApiError(404, "not_found",
                    "id: no road network covers the city '" + city.id + "' (" + city.name +
                        "): import one with its id (PUT /api/v1/roads/" + city.id + ") or covering at least half its stations",

@@ -32,6 +32,11 @@ struct SchematicRoadsLimits {
   std::size_t result_cache_bytes = 64u << 20;
 };
 
+// The road network a city's streets come from: the one with the city's id, else the one whose
+// bbox holds the most of its stations (at least half); "" when none does. GET /cities/{id}
+// tells clients (`road_network`), so they ask for the streets only when there are some.
+std::string covering_road_network(Catalog& catalog, const model::City& city);
+
 class SchematicRoadsService {
  public:
   SchematicRoadsService(Catalog& catalog, MetroService& metro, SchematicRoadsLimits limits = {});

@@ -33,6 +33,7 @@ using LocationHandler = osmium::handler::NodeLocationsForWays<LocationIndex>;
 
 constexpr double kSameStationMetres = 400;   // stops of one name this close: one station
 constexpr double kNamelessStopMetres = 150;  // a stop without a name joins a station this close
+constexpr double kStreetNameMetres = 60;     // else it takes the name of a track way this close
 const std::vector<std::string> kModes = {"subway", "light_rail", "tram",      "train",      "monorail",
                                          "funicular", "bus",     "trolleybus", "ferry"};
 const std::vector<std::string> kRailModes = {"subway", "light_rail", "tram", "train", "monorail", "funicular"};
@@ -330,10 +331,14 @@ class TrackCollector : public osmium::handler::Handler {
       if (node.location().valid() && (points.empty() || points.back() != node.location()))
         points.push_back(node.location());
     budget_.add(points.size());
-    if (points.size() >= 2) ways.emplace(way.id(), std::move(points));
+    if (points.size() < 2) return;
+    if (const char* name = well_formed_tags(way.tags()) ? tag_value(way.tags(), "name") : nullptr; name && *name)
+      names.emplace(way.id(), name);
+    ways.emplace(way.id(), std::move(points));
   }
 
   WayLocations ways;
+  std::unordered_map<osmium::object_id_type, std::string> names;  // of the track ways with one
 
  private:
   const std::unordered_set<osmium::object_id_type>& wanted_;
@@ -954,6 +959,29 @@ void add_track(const Route& route, const RouteStations& stations, const WayLocat
                count_of(stations.nodes.size() - 1, "edge") + " straight: " + named(straight, straight_count));
 }
 
+// The name of the named track way (a bus route's street) nearest to `p` within
+// kStreetNameMetres, else "". Brute force over the routes' ways: run once per station that has
+// no name of its own (two in Liechtenstein), over at most max_osm_track_points positions.
+std::string nearest_street_name(geo::LonLat p, const WayLocations& ways,
+                                const std::unordered_map<osmium::object_id_type, std::string>& names) {
+  double best = kStreetNameMetres;
+  const std::string* found = nullptr;
+  for (const auto& [id, name] : names) {
+    const auto& points = ways.at(id);
+    for (std::size_t i = 0; i + 1 < points.size(); ++i) {
+      const auto [ax, ay] = metres_from(p, {points[i].lon(), points[i].lat()});
+      const auto [bx, by] = metres_from(p, {points[i + 1].lon(), points[i + 1].lat()});
+      const double dx = bx - ax, dy = by - ay, len2 = dx * dx + dy * dy;
+      const double t = len2 > 0 ? std::clamp(-(ax * dx + ay * dy) / len2, 0.0, 1.0) : 0.0;
+      if (const double d = std::hypot(ax + t * dx, ay + t * dy); d < best) {
+        best = d;
+        found = &name;
+      }
+    }
+  }
+  return found ? *found : "";
+}
+
 struct Station {
   std::string id, name;
   double lon = 0, lat = 0;  // sums, then the mean
@@ -1095,7 +1123,16 @@ model::MetroNetwork load_metro_osm(const std::string& path, const std::vector<st
           best = d;
           into = s;
         }
-      add_to(into ? *into : new_station(key, stop, ""), key, stop);
+      if (into) {
+        add_to(*into, key, stop);
+        continue;
+      }
+      // Named after its street; the stop across the street, named so before, is the same station.
+      auto street = nearest_street_name(stop.pos, tracks.ways, tracks.names);
+      if (auto it = stations_by_name.find(ascii_lower(street)); !street.empty() && it != stations_by_name.end())
+        for (auto s : it->second)
+          if (!into && geo::geodesic_distance_m(stations[s].first, stop.pos) <= kSameStationMetres) into = s;
+      add_to(into ? *into : new_station(key, stop, std::move(street)), key, stop);
     }
 
     // Lines and their edges.

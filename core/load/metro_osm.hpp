@@ -16,7 +16,8 @@
 // ref (else name), colour colour=#rrggbb of the master or a route. Stations: the stops of one
 // stop area are one station; other stops of one name (case-insensitive, over two characters:
 // "1" names a platform's track) within 400 m of each other are one station; a stop without
-// such a name joins the nearest station within 150 m, else is a station of its own. Station
+// such a name joins the nearest station within 150 m, else is a station of its own named after
+// the nearest named way of the routes' track within 60 m (the street of a bus stop). Station
 // id "s" and its first stop's "n<node id>" or "w<way id>", at the mean of its stops. A route's
 // stations in the order of its stop positions (role stop*; of its platforms, role platform*,
 // where fewer than two stop positions are in the extract; of its other node members, as older

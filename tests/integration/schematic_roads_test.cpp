@@ -134,7 +134,9 @@ TEST_F(SchematicRoads, MonacoBusesOnMonacosRoads) {
 }
 
 TEST_F(SchematicRoads, NoRoadsIsA404NamingTheCityAndBadParametersA400) {
-  // Vienna: no road network holds its stations.
+  // Vienna: no road network holds its stations; the city tells clients so (no request to 404).
+  EXPECT_TRUE(live->get_json("/api/v1/cities/vienna")["road_network"].is_null());
+  EXPECT_EQ(live->get_json("/api/v1/cities/liechtenstein")["road_network"], "liechtenstein");
   auto r = live->get("/api/v1/cities/vienna/layout/roads");
   expect_error(r, 404, "id");
   EXPECT_NE(error_of(r)["message"].get<std::string>().find("vienna"), std::string::npos) << r.body;

@@ -215,6 +215,28 @@ TEST(MetroOsm, EdgesFollowTheWaysOutOfOrderAndReversed) {
   EXPECT_FALSE(mentions(stats, 11, ""));  // route 11 is whole
 }
 
+TEST(MetroOsm, StopsWithoutANameTakeTheirStreets) {
+  // Two unnamed bus stops 10 m beside a named street and one far from any: the first two take
+  // the street's name (no "Stop 123" on a tourist map), the third none that would mislead.
+  test::TempDir dir;
+  const auto path = dir.write(
+      "streets.osm",
+      osm(node(101, 10.000, 50.000) + node(102, 10.010, 50.000) + node(103, 10.010, 50.010) +
+          way(201, {101, 102}, tag("highway", "primary") + tag("name", "Landstrasse")) +
+          way(202, {102, 103}, tag("highway", "residential")) + node(1, 10.001, 49.9999, tag("highway", "bus_stop")) +
+          node(2, 10.008, 50.0001, tag("highway", "bus_stop")) + node(3, 10.011, 50.010, tag("highway", "bus_stop")) +
+          relation(10, {"n1:platform", "n2:platform", "n3:platform", "w201:", "w202:"},
+                   tag("type", "route") + tag("route", "bus") + tag("ref", "9"))));
+  const auto net = load_metro_osm(path, {"bus"});
+  std::vector<std::string> names;
+  for (const auto& n : net.nodes) names.push_back(n.name);
+  std::sort(names.begin(), names.end());
+  ASSERT_EQ(names.size(), 3u);
+  EXPECT_EQ(names[0], "Landstrasse");
+  EXPECT_EQ(names[1], "Landstrasse");
+  EXPECT_EQ(names[2].rfind("Stop ", 0), 0u) << names[2];  // way 202 has no name
+}
+
 TEST(MetroOsm, GapInTheTrackLeavesAStraightEdgeAndIsReported) {
   test::TempDir dir;
   const auto path = dir.write("bus.osm", bus_town());

@@ -36,6 +36,8 @@ export interface MetroLine {
 export interface CityDetail extends CitySummary {
   lines: MetroLine[];
   poi_categories: string[];
+  /** The road network its streets under the layout come from (GET .../layout/roads); null: none. */
+  road_network: string | null;
 }
 
 export interface PointGeometry {

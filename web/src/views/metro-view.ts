@@ -287,8 +287,9 @@ export class MetroView implements View {
       this.layers = new MetroLayers(this.map, frame, metro, pois.features, (pick) => this.pick(pick));
       this.heat = new HeatLayer(this.layers.heatLayer);
       this.roads = new RoadsLayer(this.map, this.layers.roadLayer, (drawn) => this.creditRoads(drawn));
-      this.hasRoads = undefined;
-      this.options.setHasRoads(true);
+      // Only a city with a road network has streets to ask for (no 404 to log otherwise).
+      this.hasRoads = city.road_network ? undefined : false;
+      this.options.setHasRoads(city.road_network !== null);
       this.clusters = new ClusterLayer(
         this.map,
         this.layers.clusterLayer,
