@@ -103,7 +103,9 @@ std::vector<ImportResult> import_city_source(Db& db, const CitySourceImport& req
   MetroImport transit;
   transit.city = req.city;
   const std::string osm_attribution = req.osm_attribution.empty() ? kOsmAttribution : req.osm_attribution;
-  if (transit.city.attribution.empty()) transit.city.attribution = osm_attribution;
+  // A feed's own credit is in its agency.txt, not read here: name the feed rather than claim OSM.
+  if (transit.city.attribution.empty())
+    transit.city.attribution = req.gtfs.empty() ? osm_attribution : "GTFS feed " + load::file_name(req.gtfs);
   transit.format = req.gtfs.empty() ? MetroFormat::osm : MetroFormat::gtfs;
   transit.files = {req.gtfs.empty() ? req.osm : req.gtfs};
   transit.modes = req.modes;

@@ -27,7 +27,7 @@ struct ImportProgress {
 };
 
 struct CitySourceImport {
-  CityMeta city;                     // id, name; attribution defaults to OpenStreetMap's (and the feed's)
+  CityMeta city;                     // id, name; attribution of the transit data: default OpenStreetMap's, or "GTFS feed <file>"
   std::string osm;                   // the extract (.osm, .osm.gz, .osm.bz2, .osm.pbf)
   std::string gtfs;                  // optional: a GTFS feed (zip or folder) for the transit network
   std::string osm_attribution;       // of the extract's POIs and roads; default OpenStreetMap's

@@ -137,6 +137,9 @@ TEST(CitySource, TransitFromAGtfsFeedTheRestFromTheExtract) {
   EXPECT_EQ(city["counts"]["stations"], 3);
   EXPECT_EQ(city["counts"]["lines"], 1);
   EXPECT_EQ(city["counts"]["pois"], 26);
+  // Credits: the feed for the transit (its agency.txt is not read), OpenStreetMap for the POIs.
+  EXPECT_NE(city["attribution"].dump().find("GTFS feed"), std::string::npos) << city["attribution"];
+  EXPECT_NE(city["attribution"].dump().find("OpenStreetMap"), std::string::npos) << city["attribution"];
   EXPECT_EQ(live.get("/api/v1/roads/lif").status, 200);
 
   // A feed naming an unknown stop: 422 naming the file and row; nothing changes.
