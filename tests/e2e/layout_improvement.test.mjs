@@ -35,6 +35,15 @@ const SIZES = [
 // A nice-10 job beside other tests gets little CPU: a clean-clone CI run, with e2e_crowd_view
 // rendering beside it and another build on the machine, saw none within 90 s.
 const IMPROVEMENT_TIMEOUT_MS = 150_000;
+/**
+ * CBC's CPU seconds for the improvement (serve --improve-mip; the default is 10). CBC stops
+ * at the optimum (4-7 s here), so more only matters on a slower machine: a CI machine once
+ * sent no event in 150 s with the default, most likely because the optimum was not reached
+ * within 10 s and the fast layout stayed ("not better").
+ */
+const IMPROVE_MIP_S = 60;
+/** The server's counters of finished improvements that announce nothing (/metrics). */
+const SILENT_OUTCOMES = ['not_better', 'failed', 'dropped'];
 /** How often the server looks for imports (server/server.cpp, EventHub). */
 const CATALOG_POLL_MS = 2000;
 
@@ -84,11 +93,31 @@ async function holdImprovements(page) {
   };
 }
 
-async function waitUntil(condition, timeoutMs, message) {
-  const until = Date.now() + timeoutMs;
-  while (!condition()) {
-    check(Date.now() < until, message);
-    await new Promise((resolve) => setTimeout(resolve, 50));
+/** The improvements that ended without an event so far, by outcome (from /metrics). */
+async function silentOutcomes(baseUrl) {
+  const text = await (await fetch(`${baseUrl}/metrics`)).text();
+  const counts = {};
+  for (const outcome of SILENT_OUTCOMES) {
+    const match = new RegExp(`^tourmap_layout_improvements_${outcome} (\\S+)$`, 'm').exec(text);
+    counts[outcome] = match ? Number(match[1]) : 0;
+  }
+  return counts;
+}
+
+/**
+ * Waits for the held layout_improved event; fails at once, naming the outcome, when the
+ * server's improvement ends without one (the counters of silent outcomes grow).
+ */
+async function waitForImprovement(baseUrl, hold, size) {
+  const before = await silentOutcomes(baseUrl);
+  const until = Date.now() + IMPROVEMENT_TIMEOUT_MS;
+  while (hold.held.length === 0) {
+    check(Date.now() < until, `${size.name}: no layout_improved event within ${IMPROVEMENT_TIMEOUT_MS / 1000} s`);
+    await new Promise((resolve) => setTimeout(resolve, 500));
+    if (hold.held.length > 0) break;
+    const now = await silentOutcomes(baseUrl);
+    const ended = SILENT_OUTCOMES.filter((outcome) => now[outcome] > before[outcome]);
+    check(ended.length === 0, `${size.name}: the background improvement ended without an event (${ended.join(', ')}; /metrics)`);
   }
 }
 
@@ -139,7 +168,7 @@ async function swapAtSize(state, baseUrl, page, size) {
   const info = page.locator('[data-testid=layout-info]');
   const promised = await info.getAttribute('data-improvement');
   check(promised === 'scheduled', `${size.name}: the fast layout says improvement "${promised}", not "scheduled"`);
-  await waitUntil(() => hold.held.length > 0, IMPROVEMENT_TIMEOUT_MS, `${size.name}: no layout_improved event within ${IMPROVEMENT_TIMEOUT_MS / 1000} s`);
+  await waitForImprovement(baseUrl, hold, size);
   const event = JSON.parse(String(hold.held[0]));
   check(event.city === CITY && event.params.solver === 'auto', `${size.name}: the event is for ${event.city} ${JSON.stringify(event.params)}`);
 
@@ -186,7 +215,7 @@ async function swapAtSize(state, baseUrl, page, size) {
 }
 
 async function run(state) {
-  const baseUrl = await serveSampleData(state);
+  const baseUrl = await serveSampleData(state, { serveArgs: ['--improve-mip', String(IMPROVE_MIP_S)] });
   let page = await openPage(state);
   for (const [i, size] of SIZES.entries()) {
     if (i > 0) {

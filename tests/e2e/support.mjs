@@ -47,9 +47,10 @@ export function check(condition, message) {
   if (!condition) throw new TestFailure(message);
 }
 
-/** Starts `tourmap serve` and resolves with its base URL, read from the first stdout line. */
-function startServer(db, serverLog) {
-  const child = spawn(bin, ['serve', '--db', db, '--port', '0', '--web-root', webRoot, '--access-log', 'off'], {
+/** Starts `tourmap serve` (with `extraArgs`) and resolves with its base URL, read from the first stdout line. */
+function startServer(db, serverLog, extraArgs = []) {
+  const args = ['serve', '--db', db, '--port', '0', '--web-root', webRoot, '--access-log', 'off', ...extraArgs];
+  const child = spawn(bin, args, {
     stdio: ['ignore', 'pipe', 'pipe'],
   });
   child.stderr.on('data', (chunk) => serverLog.push(String(chunk)));
@@ -77,8 +78,11 @@ async function stopServer(child) {
   clearTimeout(timer);
 }
 
-/** Imports the sample data into a fresh database and serves it; resolves with the base URL. */
-export async function serveSampleData(state) {
+/**
+ * Imports the sample data into a fresh database and serves it (with `serveArgs` added to
+ * `tourmap serve`); resolves with the base URL.
+ */
+export async function serveSampleData(state, { serveArgs = [] } = {}) {
   state.tmp = mkdtempSync(join(tmpdir(), 'tourmap-e2e-'));
   const db = join(state.tmp, 't.db');
   const imported = spawnSync(bin, ['import', 'manifest', manifest, '--data-dir', dataDir, '--db', db], {
@@ -89,7 +93,7 @@ export async function serveSampleData(state) {
     imported.status === 0,
     `import failed (exit ${imported.status ?? imported.signal}): ${imported.error?.message ?? imported.stderr}`,
   );
-  const server = startServer(db, state.serverLog);
+  const server = startServer(db, state.serverLog, serveArgs);
   state.server = server.child;
   return server.ready;
 }
