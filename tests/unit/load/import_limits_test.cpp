@@ -311,10 +311,10 @@ TEST(PoiLimits, CountCapStopsAtTheFirstPoiInExcess) {
 }
 
 TEST(PoiLimits, SixtyMegabyteNameIsRefusedNotTruncated) {
+  // Not timed: most of the ~3 s here is building and JSON-parsing the 60 MB text (the name
+  // check itself is one size comparison), so a clock bound only measured the machine's load.
   const std::string huge(60 << 20, 'n');
-  const auto start = Clock::now();
   auto what = expect_limit([&] { parse_pois_geojson(poi_geojson(3, huge), "huge.geojson"); }, "max_name_bytes");
-  EXPECT_LT(seconds_since(start), 5.0 * test::kSlowdown);
   EXPECT_TRUE(contains(what, "huge.geojson feature 0")) << what.substr(0, 200);
   EXPECT_TRUE(contains(what, "name is 62914560 bytes long")) << what.substr(0, 200);
   EXPECT_LT(what.size(), 500u);  // the message does not quote the text
