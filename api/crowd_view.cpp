@@ -4,6 +4,7 @@
 
 #include "crowd/scene.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 
@@ -94,6 +95,25 @@ nlohmann::json model_attribution_json() {
   });
 }
 
+namespace {
+
+// The scenes answer lists at most this many occluder boxes per scene (the scenes have 12 to 60):
+// a bound on the answer, whatever a future scene holds. `occluders` stays the full count.
+constexpr std::size_t kMaxOccluderBoxes = 256;
+
+nlohmann::json box_json(const crowd::Box3& b) {
+  return {{"min", {b.min().x(), b.min().y(), b.min().z()}}, {"max", {b.max().x(), b.max().y(), b.max().z()}}};
+}
+
+nlohmann::json occluder_boxes_json(const std::vector<crowd::Box3>& occluders) {
+  nlohmann::json boxes = nlohmann::json::array();
+  const std::size_t n = std::min(occluders.size(), kMaxOccluderBoxes);
+  for (std::size_t i = 0; i < n; ++i) boxes.push_back(box_json(occluders[i]));
+  return boxes;
+}
+
+}  // namespace
+
 nlohmann::json crowd_scenes_json(const CrowdLimits& limits,
                                  const std::function<long long(const std::string&, int)>& triangles_of) {
   nlohmann::json scenes = nlohmann::json::array();
@@ -110,9 +130,8 @@ nlohmann::json crowd_scenes_json(const CrowdLimits& limits,
                       {"models", models},
                       {"triangles", tris >= 0 ? nlohmann::json(tris) : nlohmann::json(nullptr)},
                       {"occluders", s.occluders.size()},
-                      {"bounds",
-                       {{"min", {s.bounds.min().x(), s.bounds.min().y(), s.bounds.min().z()}},
-                        {"max", {s.bounds.max().x(), s.bounds.max().y(), s.bounds.max().z()}}}},
+                      {"occluder_boxes", occluder_boxes_json(s.occluders)},
+                      {"bounds", box_json(s.bounds)},
                       {"default_camera",
                        {{"eye", {cam.eye.x(), cam.eye.y(), cam.eye.z()}},
                         {"target", {cam.target.x(), cam.target.y(), cam.target.z()}},

@@ -53,6 +53,12 @@ void add_city_routes(Router& router, AppContext& ctx) {
     for (const auto& p : city->pois)
       if (!p.category.empty()) categories.insert(p.category);
     body["poi_categories"] = categories;
+    // With counts, for choosing interests (GET .../layout?interests=): derived once per city
+    // version with the metro data (metro::CityMetroInput::categories), by id.
+    nlohmann::json counted = nlohmann::json::array();
+    for (const auto& c : ctx.metro.data_for(city->info.id)->categories.list)
+      counted.push_back({{"id", c.id}, {"count", c.count}});
+    body["categories"] = std::move(counted);
     const auto roads = covering_road_network(ctx.catalog, *city);
     body["road_network"] = roads.empty() ? nlohmann::json(nullptr) : nlohmann::json(roads);
     return cacheable(json_response(body));

@@ -2,6 +2,7 @@
 // file (issue 14).
 
 #include "map_export.hpp"
+#include "poi_walk.hpp"
 #include "routes.hpp"
 #include "schematic_roads.hpp"
 
@@ -18,6 +19,7 @@ void add_metro_routes(Router& router, AppContext& ctx) {
   auto roads = std::make_shared<SchematicRoadsService>(ctx.catalog, ctx.metro);
   router.add("GET", "/api/v1/cities/{id}/layout/roads", Exec::heavy,
              [roads](Request& req) { return roads->handle(req); });
+  add_poi_walk_route(router, ctx);  // GET /cities/{id}/pois/{poi}/walk (issue 17)
   router.add("GET", "/api/v1/cities/{id}/visual-worth", Exec::heavy,
              [&ctx](Request& req) { return ctx.metro.visual_worth(req); });
   router.add("GET", "/api/v1/cities/{id}/clusters", Exec::heavy,

@@ -29,6 +29,7 @@ void add_system_routes(Router& router, AppContext& ctx) {
                                 {"spec", "/api/v1/openapi.yaml"},
                                 {"endpoints", {"/api/v1/cities", "/api/v1/cities/{id}", "/api/v1/cities/{id}/metro",
                                                "/api/v1/cities/{id}/pois", "/api/v1/cities/{id}/pois/query",
+                                               "/api/v1/cities/{id}/pois/{poi}/walk",
                                                "/api/v1/cities/{id}/layout", "/api/v1/cities/{id}/layout/roads",
                                                "/api/v1/cities/{id}/visual-worth",
                                                "/api/v1/cities/{id}/clusters",

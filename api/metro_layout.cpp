@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 
 namespace tourmap::api {
 namespace {
@@ -149,6 +150,62 @@ nlohmann::json labels_json(const metro::CityLayoutResult& L, const std::vector<i
           {"scales", std::move(scales)}};
 }
 
+// Interests as given: at most kMaxInterests categories, names of at most
+// kMaxInterestNameBytes bytes, each once, weights finite in [0, kMaxInterestWeight].
+void add_interest(poi::CategoryWeights& out, std::string name, double weight) {
+  if (out.size() >= poi::kMaxInterests)
+    throw bad("interests", "at most " + std::to_string(poi::kMaxInterests) + " categories");
+  if (name.size() > poi::kMaxInterestNameBytes)
+    throw bad("interests", "category '" + shown(name) + "' is longer than " +
+                               std::to_string(poi::kMaxInterestNameBytes) + " bytes");
+  if (!std::isfinite(weight) || weight < 0 || weight > poi::kMaxInterestWeight)
+    throw bad("interests", "the weight of '" + shown(name) + "' must be between 0 and 10");
+  for (const auto& [seen, w] : out)
+    if (seen == name) throw bad("interests", "category '" + shown(name) + "' is named twice");
+  out.emplace_back(std::move(name), weight);
+}
+
+// GET: "category:weight,category:weight,..." (the last ':' of an entry ends its name; a name
+// with a ',' can only be sent in a POST); "" names none.
+poi::CategoryWeights parse_interests_text(const std::string& text) {
+  poi::CategoryWeights out;
+  if (text.empty()) return out;
+  std::size_t start = 0;
+  while (true) {
+    const auto comma = text.find(',', start);
+    const auto entry = text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    const auto colon = entry.rfind(':');
+    if (colon == std::string::npos)
+      throw bad("interests", "expected category:weight pairs separated by commas, got '" + shown(entry) + "'");
+    const auto number = entry.substr(colon + 1);
+    char* end = nullptr;
+    const double w = std::strtod(number.c_str(), &end);
+    if (number.empty() || end != number.c_str() + number.size())
+      throw bad("interests", "'" + shown(number) + "' is not a number");
+    add_interest(out, entry.substr(0, colon), w);
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  return out;
+}
+
+// POST: {"category": weight, ...}.
+poi::CategoryWeights parse_interests_json(const nlohmann::json& v) {
+  if (!v.is_object()) throw bad("interests", "expected an object of category: weight");
+  poi::CategoryWeights out;
+  for (auto it = v.begin(); it != v.end(); ++it) {
+    if (!it.value().is_number()) throw bad("interests", "the weight of '" + shown(it.key()) + "' must be a number");
+    add_interest(out, it.key(), it.value().get<double>());
+  }
+  return out;
+}
+
+nlohmann::json interests_json(const poi::CategoryWeights& weights) {
+  nlohmann::json out = nlohmann::json::object();
+  for (const auto& [id, w] : weights) out[id] = w;
+  return out;
+}
+
 nlohmann::json points_json(const std::vector<geo::XY>& points) {
   nlohmann::json out = nlohmann::json::array();
   for (const auto& p : points) out.push_back(xy(p));
@@ -163,7 +220,39 @@ std::string LayoutRequest::canonical() const {
   std::snprintf(buf, sizeof buf, "v=%d lengths=%s solver=%d t=%.3f rank=%d wr=%.6g wrho=%.6g k=%.6g l=%.6g",
                 kLayoutVersion, worth_lengths ? "vw" : "uniform", static_cast<int>(solver), time_limit_s, static_cast<int>(rank),
                 worth.w_rank, worth.w_proximity, worth.k_m, l_const);
-  return buf;
+  return buf + interests_key(*this);
+}
+
+std::string interests_key(const LayoutRequest& req) {
+  auto weights = req.interests_resolved ? req.interests : req.interests_given;
+  if (weights.empty()) return {};
+  std::sort(weights.begin(), weights.end());
+  // JSON: names may hold any character, the key stays unambiguous.
+  return " interests=" + interests_json(weights).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+}
+
+void resolve_interests(LayoutRequest& req, const CityMetroData& data) {
+  for (const auto& [id, w] : req.interests_given) {
+    const auto& list = data.categories.list;
+    if (std::none_of(list.begin(), list.end(), [&](const poi::CategoryCount& c) { return c.id == id; })) {
+      std::string known;
+      for (const auto& c : list) known += (known.empty() ? "'" : ", '") + shown(c.id) + "'";
+      throw bad("interests", "unknown category '" + shown(id) + "'; " +
+                                 (known.empty() ? std::string("the city has no POIs") : "the city's categories are " + known));
+    }
+  }
+  try {
+    req.interests = poi::normalise_interests(req.interests_given, data.categories);
+  } catch (const std::invalid_argument& e) {
+    throw bad("interests", e.what());
+  }
+  req.interests_resolved = true;
+}
+
+std::vector<double> interest_weights(const LayoutRequest& req, const CityMetroData& data) {
+  LayoutRequest resolved = req;
+  resolve_interests(resolved, data);
+  return poi::poi_interest_weights(resolved.interests, data.categories);
 }
 
 LayoutRequest parse_layout_query(const Request& req) {
@@ -181,6 +270,8 @@ LayoutRequest parse_layout_query(const Request& req) {
       double v = std::strtod(value.c_str(), &end);
       if (value.empty() || end != value.c_str() + value.size()) throw bad(key, "'" + value + "' is not a number");
       set_number(r, key, v);
+    } else if (key == "interests") {
+      r.interests_given = parse_interests_text(value);
     }
   }
   return r;
@@ -206,6 +297,8 @@ LayoutRequest parse_layout_body(const nlohmann::json& body) {
     } else if (key == "time_limit_s" || key == "w_r" || key == "w_rho" || key == "k" || key == "l_const") {
       if (!v.is_number()) throw bad(key, "expected a number");
       set_number(r, key, v.get<double>());
+    } else if (key == "interests") {
+      r.interests_given = parse_interests_json(v);
     } else {
       throw bad(key, "unknown field");
     }
@@ -213,29 +306,34 @@ LayoutRequest parse_layout_body(const nlohmann::json& body) {
   return r;
 }
 
-std::vector<double> poi_worth_geo(const CityMetroData& data, RankSource rank, const metro::WorthParams& params) {
-  auto vw = make_visual_worth(data, rank, params);
+std::vector<double> poi_worth_geo(const CityMetroData& data, RankSource rank, const metro::WorthParams& params,
+                                  const std::vector<double>& poi_weight) {
+  check_rank_source(data, rank);
+  auto vw = metro::make_visual_worth(data, data.city->pois, rank, params, poi_weight);
   return vw.at_points(data.poi_xy);  // batched: exact within the work budget, else bounded
 }
 
-metro::CityLayoutParams layout_params(const LayoutRequest& req, const MipSolver& mip) {
+metro::CityLayoutParams layout_params(const CityMetroData& data, const LayoutRequest& req, const MipSolver& mip) {
   metro::CityLayoutParams p;
   p.worth_lengths = req.worth_lengths;
   p.l_const = req.l_const;
   p.rank = req.rank;
   p.worth = req.worth;
   p.solver = req.solver;
+  p.poi_weight = interest_weights(req, data);
   p.time_limit_s = req.time_limit_s;
   p.mip = mip;
   p.label_room_ms = req.label_room ? metro::kLabelRoomCpuMs : 0.0;
   return p;
 }
 
-std::shared_ptr<const CityLayout> compute_city_layout(const CityMetroData& d, const LayoutRequest& req,
+std::shared_ptr<const CityLayout> compute_city_layout(const CityMetroData& d, const LayoutRequest& given,
                                                       const MipSolver& mip) {
   auto started = Clock::now();
+  LayoutRequest req = given;
+  resolve_interests(req, d);
   check_rank_source(d, req.rank);
-  auto computed = metro::layout_city(d, d.city->pois, layout_params(req, mip));
+  auto computed = metro::layout_city(d, d.city->pois, layout_params(d, req, mip));
   auto result = std::make_shared<CityLayout>();
   result->poi_layout = computed.frame.poi_layout;
   result->poi_worth = computed.poi_worth;
@@ -323,6 +421,15 @@ std::string layout_body(const CityMetroData& d, const LayoutRequest& req, const 
   if (!city.info.poi_attribution.empty()) attribution.push_back(city.info.poi_attribution);
   const auto& report = L.route;
   const auto rank = metro::resolve_rank_source(req.rank, d.has_rank);
+  nlohmann::json params = {{"lengths", req.worth_lengths ? "visual-worth" : "uniform"},
+                           {"rank", rank == RankSource::data ? "data" : rank == RankSource::proxy ? "proxy" : "uniform"},
+                           {"w_r", req.worth.w_rank},
+                           {"w_rho", req.worth.w_proximity},
+                           {"k", req.worth.k_m},
+                           {"l_const", req.l_const},
+                           {"time_limit_s", req.time_limit_s}};
+  // Only when some category weighs other than 1: default answers stay as they were.
+  if (!req.interests.empty()) params["interests"] = interests_json(req.interests);
 
   nlohmann::json body = {
       {"city", city.info.id},
@@ -335,13 +442,7 @@ std::string layout_body(const CityMetroData& d, const LayoutRequest& req, const 
                                  {"lat0", d.projection.origin.lat},
                                  {"k0", 1.0}}},
                  {"layout_units_per_metre", frame.scale != 0 ? 1.0 / frame.scale : 0.0}}},
-      {"params", {{"lengths", req.worth_lengths ? "visual-worth" : "uniform"},
-                  {"rank", rank == RankSource::data ? "data" : rank == RankSource::proxy ? "proxy" : "uniform"},
-                  {"w_r", req.worth.w_rank},
-                  {"w_rho", req.worth.w_proximity},
-                  {"k", req.worth.k_m},
-                  {"l_const", req.l_const},
-                  {"time_limit_s", req.time_limit_s}}},
+      {"params", std::move(params)},
       {"stations", {{"type", "FeatureCollection"}, {"features", std::move(stations)}}},
       {"edges", {{"type", "FeatureCollection"}, {"features", std::move(edges)}}},
       {"pois", {{"type", "FeatureCollection"}, {"features", std::move(pois)}}},

@@ -185,7 +185,7 @@ void MetroService::ClusterWriter::append_cluster(std::string& out, std::uint32_t
 }
 
 void MetroService::ClusterWriter::append_representative(std::string& out, std::uint32_t poi) const {
-  const auto& rep = pois[poi];
+  const auto& rep = pois[leaf_poi ? (*leaf_poi)[poi] : poi];
   out += "{\"category\":";
   append_string(out, rep.category);
   out += ",\"id\":";
@@ -258,8 +258,10 @@ std::shared_ptr<const CityMetroData> MetroService::data_for(const std::string& c
   return d;
 }
 
-std::shared_ptr<const CityLayout> MetroService::layout_for(const CityMetroData& data, const LayoutRequest& req,
+std::shared_ptr<const CityLayout> MetroService::layout_for(const CityMetroData& data, const LayoutRequest& given,
                                                           bool* cached) {
+  LayoutRequest req = given;  // the key needs the interests' canonical form (callers may not have it)
+  resolve_interests(req, data);
   if (data.graph.edges.size() > limits_.max_layout_edges)
     throw ApiError(413, "too_large",
                    "id: the network has " + std::to_string(data.graph.edges.size()) +
@@ -320,7 +322,9 @@ std::shared_ptr<const CityLayout> MetroService::compute_layout(const CityMetroDa
     LayoutRequest fast = req;
     fast.solver = LayoutRequest::Solver::fast;
     auto computed = compute_city_layout(data, fast, mip_);
-    if (improvable(data)) return computed;  // undecided until served
+    // Layouts for interests are not improved: a client moving sliders would queue a 10 s MIP
+    // per step and push the default layouts' improvements out of the queue.
+    if (improvable(data) && req.interests.empty()) return computed;  // undecided until served
     return with_body(*computed, with_improvement(computed->body, "none"));
   }
   auto computed = compute_city_layout(data, req, mip_);
@@ -451,6 +455,7 @@ Response MetroService::layout(const Request& req, bool post) {
   auto params = post ? parse_layout_body(parse_json_body(req)) : parse_layout_query(req);
   auto data = data_for(req.param("id"));
   if (data->graph.edges.empty()) throw ApiError(422, "empty_network", "id: the city has no metro edges to lay out", "id");
+  resolve_interests(params, *data);
   bool cached = false;
   auto layout = layout_for(*data, params, &cached);
   Response r;
@@ -464,10 +469,11 @@ Response MetroService::visual_worth(const Request& req) {
   auto bbox = query_bbox(req);
   auto width = static_cast<std::size_t>(query_int(req, "width", 1, static_cast<long long>(limits_.max_raster_side), 128));
   auto height = static_cast<std::size_t>(query_int(req, "height", 1, static_cast<long long>(limits_.max_raster_side), 128));
-  LayoutRequest params = parse_layout_query(req);  // rank, w_r, w_rho, k
+  LayoutRequest params = parse_layout_query(req);  // rank, w_r, w_rho, k, interests
   auto data = data_for(req.param("id"));
   auto started = Clock::now();
-  auto vw = make_visual_worth(*data, params.rank, params.worth);
+  check_rank_source(*data, params.rank);
+  auto vw = metro::make_visual_worth(*data, data->city->pois, params.rank, params.worth, interest_weights(params, *data));
   geo::BBox box = bbox ? *bbox : data->city->info.bbox;
   // The raster's cell centres, rows from north to south (image order), projected; then the
   // stations: one batched evaluation (exact within the work budget, else the bounded
@@ -505,7 +511,36 @@ Response MetroService::visual_worth(const Request& req) {
   return r;
 }
 
-MetroService::ClusterWindow MetroService::geo_window(const CityMetroData& data, const std::string* bbox_text) {
+namespace {
+
+// A cluster tree's input with interests (weights per POI, interest_weights): each POI's worth
+// times its own weight, so that the prominence and the representatives follow the interests
+// too; the POIs of weight 0 are left out (they are not shown), `leaf_poi` maps the leaves
+// back to the POIs.
+struct WeightedClusterInput {
+  std::vector<geo::XY> points;
+  std::vector<double> worth;
+  std::vector<bool> skip;
+  std::shared_ptr<std::vector<std::uint32_t>> leaf_poi = std::make_shared<std::vector<std::uint32_t>>();
+};
+
+WeightedClusterInput weighted_cluster_input(const std::vector<geo::XY>& points, const std::vector<double>& worth,
+                                            const std::vector<bool>* skip, const std::vector<double>& weight) {
+  WeightedClusterInput in;
+  for (std::uint32_t i = 0; i < points.size(); ++i) {
+    if (weight[i] <= 0) continue;
+    in.points.push_back(points[i]);
+    in.worth.push_back(worth[i] * weight[i]);
+    in.skip.push_back(skip && (*skip)[i]);
+    in.leaf_poi->push_back(i);
+  }
+  return in;
+}
+
+}  // namespace
+
+MetroService::ClusterWindow MetroService::geo_window(const Request& req, const CityMetroData& data,
+                                                     const std::string* bbox_text) {
   // Only the part of the window where the city has POIs matters, and it must be cut to that
   // before projecting: the city's local transverse Mercator is meaningless far from the city
   // (a whole-world window used to project to a box holding nothing, so 0 clusters).
@@ -528,16 +563,27 @@ MetroService::ClusterWindow MetroService::geo_window(const CityMetroData& data, 
     w.lo = {std::min(w.lo.x, c.x), std::min(w.lo.y, c.y)};
     w.hi = {std::max(w.hi.x, c.x), std::max(w.hi.y, c.y)};
   }
-  auto worth_key = "worth:" + data.key;
+  // Interests (only they of the layout parameters matter here): "" without.
+  auto interests = parse_layout_query(req);
+  resolve_interests(interests, data);
+  const auto weights = poi::poi_interest_weights(interests.interests, data.categories);
+  const auto suffix = interests_key(interests);
+  auto worth_key = "worth:" + data.key + suffix;
   std::shared_ptr<const std::vector<double>> worth;
   if (auto hit = geo_worth_.get(worth_key)) {
     worth = *hit;
   } else {
-    worth = std::make_shared<const std::vector<double>>(poi_worth_geo(data, RankSource::automatic, {}));
+    worth = std::make_shared<const std::vector<double>>(poi_worth_geo(data, RankSource::automatic, {}, weights));
     geo_worth_.put(worth_key, worth, bytes_of(*worth));
   }
-  const auto tree_key = "clusters:geo:" + data.key;
-  w.tree = tree_for(tree_key, data.poi_xy, *worth, nullptr);
+  const auto tree_key = "clusters:geo:" + data.key + suffix;
+  if (weights.empty()) {
+    w.tree = tree_for(tree_key, data.poi_xy, *worth, nullptr);
+  } else {
+    auto in = weighted_cluster_input(data.poi_xy, *worth, nullptr, weights);
+    w.tree = tree_for(tree_key, in.points, in.worth, nullptr);
+    w.leaf_poi = std::move(in.leaf_poi);
+  }
   w.centers = geo_centers(tree_key, w.tree, data.projection);
   return w;
 }
@@ -564,13 +610,22 @@ MetroService::ClusterWindow MetroService::layout_window(const Request& req, cons
   ClusterWindow w;
   parse_layout_bbox(*bbox_text, w.lo, w.hi);
   auto params = parse_layout_query(req);
+  resolve_interests(params, data);
   bool cached = false;
   auto layout = layout_for(data, params, &cached);
+  // The key holds the interests (canonical()): the layout and the cluster worth follow them.
   auto tree_key = "clusters:layout:" + data.key + ":" + params.canonical();
   // An improved layout moved the POIs: its tree is another one (a key of its own, so that a
   // tree built from the fast layout, in memory or in the store, is never taken for it).
   if (improvement_of(layout->body) == "applied") tree_key += ":improved";
-  w.tree = tree_for(tree_key, layout->poi_layout, layout->poi_worth, &layout->poi_outside);
+  const auto weights = poi::poi_interest_weights(params.interests, data.categories);
+  if (weights.empty()) {
+    w.tree = tree_for(tree_key, layout->poi_layout, layout->poi_worth, &layout->poi_outside);
+  } else {
+    auto in = weighted_cluster_input(layout->poi_layout, layout->poi_worth, &layout->poi_outside, weights);
+    w.tree = tree_for(tree_key, in.points, in.worth, &in.skip);
+    w.leaf_poi = std::move(in.leaf_poi);
+  }
   return w;
 }
 
@@ -583,12 +638,12 @@ Response MetroService::clusters(const Request& req) {
   auto data = data_for(req.param("id"));
   const auto* bbox_text = req.query_param("bbox");
   const bool geo_space = space == "geo";
-  const ClusterWindow w = geo_space ? geo_window(*data, bbox_text) : layout_window(req, *data, bbox_text);
+  const ClusterWindow w = geo_space ? geo_window(req, *data, bbox_text) : layout_window(req, *data, bbox_text);
 
   // At least 2M active clusters where the tree allows, so a whole-map window fills the top M
   // and the M previews (see poi/active_clusters.hpp).
   const auto active = w.empty ? poi::ActiveClusters{} : poi::active_clusters(*w.tree, w.lo, w.hi, m, 2 * m);
-  const ClusterWriter writer{*w.tree, data->city->pois, w.centers ? &w.centers->centers : nullptr};
+  const ClusterWriter writer{*w.tree, data->city->pois, w.centers ? &w.centers->centers : nullptr, w.leaf_poi.get()};
   // Keys in alphabetical order, as nlohmann::json (std::map) wrote them before.
   Response r;
   std::string& out = r.body;

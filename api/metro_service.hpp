@@ -103,12 +103,16 @@ class MetroService {
     std::shared_ptr<const GeoCenters> centers;
     geo::XY lo, hi;
     bool empty = false;  // the window holds no POI: no clusters
+    // With interests: the tree's leaves are the POIs of weight > 0, leaf_poi[leaf] the POI;
+    // null: every POI, in order.
+    std::shared_ptr<const std::vector<std::uint32_t>> leaf_poi;
   };
   // Writes cluster objects as JSON; `centers` null: the tree is in layout space.
   struct ClusterWriter {
     const poi::ClusterTree& tree;
     const std::vector<model::Poi>& pois;
     const LonLats* centers;
+    const std::vector<std::uint32_t>* leaf_poi;  // see ClusterWindow
 
     // [{...}, ...] for `nodes`, with prominence[i] for nodes[i].
     void append_list(std::string& out, const std::vector<std::uint32_t>& nodes, const double* prominence) const;
@@ -116,7 +120,7 @@ class MetroService {
     void append_representative(std::string& out, std::uint32_t poi) const;
   };
 
-  ClusterWindow geo_window(const CityMetroData& data, const std::string* bbox_text);
+  ClusterWindow geo_window(const Request& req, const CityMetroData& data, const std::string* bbox_text);
   ClusterWindow layout_window(const Request& req, const CityMetroData& data, const std::string* bbox_text);
   std::shared_ptr<const GeoCenters> geo_centers(const std::string& tree_key,
                                                 const std::shared_ptr<const poi::ClusterTree>& tree,

@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -309,6 +310,9 @@ PreparedScene& CrowdStreamer::prepare(const api::CrowdView& view, const std::sha
 
 namespace {
 
+// The lowest eye the renderer is given (metres above the ground plane y = 0).
+constexpr float kMinEyeHeightM = 0.05f;
+
 std::string ready_json(const std::string& scene, const PreparedScene& p) {
   const auto& cam = p.scene.default_camera;
   const auto& b = p.scene.bounds;
@@ -361,6 +365,10 @@ void CrowdStreamer::render_one(Stream& st, const std::shared_ptr<WsSession>& ses
     cam.eye = view.has_camera ? crowd::Vec3(view.eye[0], view.eye[1], view.eye[2]) : dc.eye;
     cam.target = view.has_camera ? crowd::Vec3(view.target[0], view.target[1], view.target[2]) : dc.target;
     cam.fov_deg = view.has_camera ? view.fov : dc.fov_deg;
+    // An eye under the floor would see the underside of the ground plane and nothing else: it is
+    // lifted just above the ground box (2 cm). Should that land it on the target, it goes up 1 m.
+    cam.eye.y() = std::max(cam.eye.y(), kMinEyeHeightM);
+    if ((cam.eye - cam.target).squaredNorm() < 1e-6f) cam.eye.y() += 1.f;
     cam.width = view.width;
     cam.height = view.height;
     render::FrameRequest req;

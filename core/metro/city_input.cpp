@@ -36,6 +36,7 @@ CityMetroInput make_city_metro_input(const model::MetroNetwork& net, const std::
     d.poi_station_km.push_back(km);
     d.has_rank = d.has_rank || p.rank.has_value() || p.popularity.has_value();
   }
+  d.categories = poi::poi_categories(pois);
   return d;
 }
 
@@ -67,11 +68,12 @@ std::vector<double> poi_ranks(const std::vector<model::Poi>& pois, bool has_rank
 }
 
 VisualWorth make_visual_worth(const CityMetroInput& in, const std::vector<model::Poi>& pois, RankSource source,
-                              const WorthParams& params) {
+                              const WorthParams& params, const std::vector<double>& poi_weight) {
   auto ranks = poi_ranks(pois, in.has_rank, source);
   std::vector<WorthSource> sources;
   sources.reserve(in.poi_xy.size());
-  for (std::size_t i = 0; i < in.poi_xy.size(); ++i) sources.push_back({in.poi_xy[i], ranks[i], in.poi_station_km[i]});
+  for (std::size_t i = 0; i < in.poi_xy.size(); ++i)
+    sources.push_back({in.poi_xy[i], ranks[i], in.poi_station_km[i], poi_weight.empty() ? 1.0 : poi_weight.at(i)});
   return VisualWorth(std::move(sources), params);
 }
 

@@ -7,6 +7,7 @@
 #include "metro/visual_worth.hpp"
 #include "model/metro.hpp"
 #include "model/poi.hpp"
+#include "poi/interests.hpp"
 
 #include <string>
 #include <vector>
@@ -30,6 +31,7 @@ struct CityMetroInput {
   std::size_t station_count = 0;       // nodes that are stations (not junctions)
   std::vector<bool> is_station;        // per node
   std::vector<std::string> names;      // per node: the station's name (empty for a junction)
+  poi::PoiCategories categories;       // the POIs' categories with counts (interests)
 };
 
 CityMetroInput make_city_metro_input(const model::MetroNetwork& net, const std::vector<model::Poi>& pois,
@@ -42,8 +44,9 @@ RankSource resolve_rank_source(RankSource source, bool has_rank);
 // rank or popularity.
 std::vector<double> poi_ranks(const std::vector<model::Poi>& pois, bool has_rank, RankSource source);
 
-// The visual worth field (eq. 5.1) over a city's POIs.
+// The visual worth field (eq. 5.1) over a city's POIs; `poi_weight`: per POI its interest
+// weight (poi/interests.hpp), empty for the paper's field.
 VisualWorth make_visual_worth(const CityMetroInput& in, const std::vector<model::Poi>& pois, RankSource source,
-                              const WorthParams& params);
+                              const WorthParams& params, const std::vector<double>& poi_weight = {});
 
 }  // namespace tourmap::metro

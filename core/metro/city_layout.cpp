@@ -189,7 +189,7 @@ CityLayoutResult layout_city(const CityMetroInput& in, const std::vector<model::
 
   // 1. Visual worth (5.4.1, eq. 5.1) at every node and POI: one batched evaluation.
   auto t = Clock::now();
-  auto vw = make_visual_worth(in, pois, params.rank, params.worth);
+  auto vw = make_visual_worth(in, pois, params.rank, params.worth, params.poi_weight);
   std::vector<XY> worth_points(in.graph.pos);
   worth_points.insert(worth_points.end(), in.poi_xy.begin(), in.poi_xy.end());
   auto worth = vw.at_points(worth_points);

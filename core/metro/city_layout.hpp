@@ -39,6 +39,8 @@ struct CityLayoutParams {
   double l_const = 10.0;
   RankSource rank = RankSource::automatic;
   WorthParams worth;
+  // Per POI its interest weight in eq. 5.1 (poi/interests.hpp; beyond the paper); empty: 1.
+  std::vector<double> poi_weight;
   LayoutSolver solver = LayoutSolver::automatic;
   double time_limit_s = 10.0;
   MipSolveFn mip;  // needed when the MIP may run; empty: no MIP (as "fast")

@@ -39,6 +39,8 @@ VisualWorth::VisualWorth(std::vector<WorthSource> sources, const WorthParams& pa
     pos_.push_back(s.pos);
     bandwidth_.push_back(h);
   }
+  if (std::any_of(sources.begin(), sources.end(), [](const WorthSource& s) { return s.weight != 1.0; }))
+    for (const auto& s : sources) weight_.push_back(s.weight);
 }
 
 VisualWorth::~VisualWorth() = default;
@@ -75,8 +77,9 @@ double VisualWorth::sum_at(XY u, std::size_t& visited) const {
     double dx = u.x - pos_[i].x, dy = u.y - pos_[i].y;
     double d2 = dx * dx + dy * dy;
     if (d2 > 16 * h2) continue;  // outside the circle of reach (the box is its bound)
-    // eq. 5.1: 1/h^2 * K, K = exp(-d^2 / 2h^2) / (2 pi h^2)
-    sum += std::exp(-d2 / (2 * h2)) / (2 * M_PI * h2 * h2);
+    // eq. 5.1: 1/h^2 * K, K = exp(-d^2 / 2h^2) / (2 pi h^2); times the interest weight
+    const double kernel = std::exp(-d2 / (2 * h2)) / (2 * M_PI * h2 * h2);
+    sum += weight_.empty() ? kernel : weight_[i] * kernel;
   }
   return sum;
 }
@@ -145,7 +148,7 @@ std::vector<double> VisualWorth::at_points(std::span<const XY> points, const Wor
     std::fill(out.begin(), out.end(), 0.0);
   }
 
-  const auto approx = worth::approximate_worth(pos_, bandwidth_, points, density, work, options.grids_only, out);
+  const auto approx = worth::approximate_worth(pos_, bandwidth_, weight_, points, density, work, options.grids_only, out);
   rep.exact = false;
   rep.exact_sources = approx.exact_sources;
   rep.levels = approx.levels;

@@ -75,6 +75,10 @@ struct WorthSource {
   XY pos;               // metres (city projection)
   double rank01 = 1.0;  // r_i in (0, 1]
   double station_km = 0.0;  // rho_i before the cap
+  // Beyond the paper: the tourist's interest in the POI's category (poi/interests.hpp), a
+  // factor on its kernel in eq. 5.1 (>= 0; 1 keeps the paper's value exactly). n stays the
+  // count of all POIs.
+  double weight = 1.0;
 };
 
 // How a batched evaluation may go.
@@ -137,6 +141,7 @@ class VisualWorth {
 
   std::vector<XY> pos_;
   std::vector<double> bandwidth_;
+  std::vector<double> weight_;  // per POI; empty when every weight is 1 (the paper's eq. 5.1)
   std::unique_ptr<Index> index_;
 };
 

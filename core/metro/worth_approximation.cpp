@@ -47,7 +47,8 @@ inline void cubic_weights(double t, double w[4]) {
 // band's reach.
 class ExactBand {
  public:
-  ExactBand(const std::vector<XY>& pos, const std::vector<double>& bandwidth, const std::vector<std::uint32_t>& members) {
+  ExactBand(const std::vector<XY>& pos, const std::vector<double>& bandwidth, const std::vector<double>& weight,
+            const std::vector<std::uint32_t>& members) {
     Bounds box;
     double hmax = 0;
     for (auto i : members) {
@@ -75,7 +76,8 @@ class ExactBand {
     for (std::size_t k = 0; k < members.size(); ++k) {
       const auto i = members[k];
       const double hh = bandwidth[i] * bandwidth[i];
-      kernels_[fill[cell_of[k]]++] = {pos[i].x, pos[i].y, -1.0 / (2 * hh), 16 * hh, 1.0 / (2 * M_PI * hh * hh)};
+      const double coef = 1.0 / (2 * M_PI * hh * hh);
+      kernels_[fill[cell_of[k]]++] = {pos[i].x, pos[i].y, -1.0 / (2 * hh), 16 * hh, weight.empty() ? coef : weight[i] * coef};
     }
   }
 
@@ -102,7 +104,7 @@ class ExactBand {
     double x, y;
     double a;     // -1 / (2 h^2)
     double r2;    // (4 h)^2
-    double coef;  // 1 / (2 pi h^4)
+    double coef;  // 1 / (2 pi h^4), times the POI's weight
   };
   XY origin_;
   double cell_ = 1, reach_ = 0;
@@ -195,9 +197,10 @@ struct Bracket {
 
 class Approximation {
  public:
-  Approximation(const std::vector<XY>& pos, const std::vector<double>& bandwidth, std::size_t point_count,
-                const PointDensity& density, const std::vector<double>& exact_work, bool grids_only)
-      : pos_(pos), bandwidth_(bandwidth) {
+  Approximation(const std::vector<XY>& pos, const std::vector<double>& bandwidth, const std::vector<double>& weight,
+                std::size_t point_count, const PointDensity& density, const std::vector<double>& exact_work,
+                bool grids_only)
+      : pos_(pos), bandwidth_(bandwidth), weight_(weight) {
     const std::size_t n = pos.size();
     double hmin = std::numeric_limits<double>::infinity(), hmax = 0;
     for (double h : bandwidth) {
@@ -343,7 +346,7 @@ class Approximation {
     }
     for (const auto& members : bands) {
       util::check_stop();
-      if (!members.empty()) bands_.emplace_back(pos_, bandwidth_, members);
+      if (!members.empty()) bands_.emplace_back(pos_, bandwidth_, weight_, members);
     }
   }
 
@@ -388,9 +391,10 @@ class Approximation {
         const double share = H_.size() == 1 ? 1.0 : l == br.b ? br.lower : br.upper;
         if (share <= 0) continue;
         const double h = bandwidth_[i], H = H_[l];
+        const double mass = share / (h * h) / (2 * M_PI * H * H);
         key.push_back(static_cast<std::uint32_t>((l - l0) * tiles + t));
         contrib.push_back({kx, ky, static_cast<float>(fx - kxf), static_cast<float>(fy - kyf),
-                           static_cast<float>(share / (h * h) / (2 * M_PI * H * H))});
+                           static_cast<float>(weight_.empty() ? mass : weight_[i] * mass)});
         ++start[key.back() + 1];
         own_tile[t] = 1;
       }
@@ -529,6 +533,7 @@ class Approximation {
 
   const std::vector<XY>& pos_;
   const std::vector<double>& bandwidth_;
+  const std::vector<double>& weight_;  // empty: 1
   Bounds poi_bounds_, point_bounds_;
   std::vector<double> H_;
   std::vector<Bracket> bracket_;
@@ -543,10 +548,10 @@ class Approximation {
 }  // namespace
 
 ApproximationReport approximate_worth(const std::vector<XY>& pos, const std::vector<double>& bandwidth,
-                                      std::span<const XY> points, const PointDensity& density,
-                                      const std::vector<double>& exact_work, bool grids_only,
-                                      std::vector<double>& out) {
-  Approximation approx(pos, bandwidth, points.size(), density, exact_work, grids_only);
+                                      const std::vector<double>& weight, std::span<const XY> points,
+                                      const PointDensity& density, const std::vector<double>& exact_work,
+                                      bool grids_only, std::vector<double>& out) {
+  Approximation approx(pos, bandwidth, weight, points.size(), density, exact_work, grids_only);
   approx.sum(points, out);
   return {approx.exact_sources(), approx.grid_levels(), approx.tiles()};
 }

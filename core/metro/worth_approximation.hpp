@@ -17,12 +17,13 @@ struct ApproximationReport {
   std::size_t tiles = 0;          // grid tiles computed
 };
 
-// Adds eq. 5.1's sum over the POIs (`pos`, `bandwidth`; without the 1/n) at each point to
+// Adds eq. 5.1's sum over the POIs (`pos`, `bandwidth`, each kernel times `weight`, empty:
+// 1; without the 1/n) at each point to
 // `out` (sized like `points`). `density` describes the points, `exact_work[i]` the kernels POI
 // i would cost summed exactly (it picks which POIs stay exact); `grids_only` puts every POI on
 // the grids. Polls util::check_stop().
 ApproximationReport approximate_worth(const std::vector<XY>& pos, const std::vector<double>& bandwidth,
-                                      std::span<const XY> points, const PointDensity& density,
+                                      const std::vector<double>& weight, std::span<const XY> points, const PointDensity& density,
                                       const std::vector<double>& exact_work, bool grids_only,
                                       std::vector<double>& out);
 

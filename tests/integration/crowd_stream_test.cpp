@@ -85,6 +85,50 @@ TEST(CrowdApi, ScenesListTheThreeScenesWithLimitsAndAttribution) {
   EXPECT_TRUE(cesium);
 }
 
+TEST(CrowdApi, ScenesListTheOccluderBoxesInsideTheSceneBounds) {
+  LiveServer s(crowd_flags());
+  auto j = s.get_json("/api/v1/crowd/scenes");
+  for (const auto& sc : j["scenes"]) {
+    SCOPED_TRACE(sc["id"].get<std::string>());
+    const auto& boxes = sc["occluder_boxes"];
+    ASSERT_TRUE(boxes.is_array());
+    EXPECT_EQ(boxes.size(), sc["occluders"].get<std::size_t>());
+    EXPECT_GT(boxes.size(), 0u);
+    EXPECT_LE(boxes.size(), 256u);
+    const auto& lo = sc["bounds"]["min"];
+    const auto& hi = sc["bounds"]["max"];
+    for (const auto& b : boxes)
+      for (int axis = 0; axis < 3; ++axis) {
+        EXPECT_LT(b["min"][axis].get<double>(), b["max"][axis].get<double>());
+        EXPECT_GE(b["min"][axis].get<double>(), lo[axis].get<double>());
+        EXPECT_LE(b["max"][axis].get<double>(), hi[axis].get<double>());
+      }
+  }
+  // The office: 3 x 4 rooms of five walls (two south walls beside the door), 3 m high, on the ground.
+  const auto& office = j["scenes"][0];
+  ASSERT_EQ(office["occluder_boxes"].size(), 60u);
+  EXPECT_DOUBLE_EQ(office["occluder_boxes"][0]["min"][1].get<double>(), 0.0);
+  EXPECT_DOUBLE_EQ(office["occluder_boxes"][0]["max"][1].get<double>(), 3.0);
+}
+
+TEST(CrowdApi, AnEyeUnderTheFloorIsLiftedAboveIt) {
+  LiveServer s(crowd_flags());
+  WsClient ws(s.port(), "/api/v1/crowd/stream");
+  ws.send(R"({"type":"view","scene":"office","count":12,"width":160,"height":120,"quality":70,"mode":"vdr","animate":false,)"
+          R"("camera":{"eye":[5,0.05,2],"target":[20,1,20],"fov":60}})");
+  Frame above = next_frame(ws);
+  // 3 m under the floor: rendered from 5 cm above it, the same picture.
+  ws.send(R"({"type":"view","camera":{"eye":[5,-3,2],"target":[20,1,20],"fov":60}})");
+  Frame under = next_frame(ws);
+  EXPECT_GT(under.id, above.id);
+  EXPECT_EQ(under.jpeg, above.jpeg);
+  // Lifted onto the target itself: moved up again, a top view, still a frame.
+  ws.send(R"({"type":"view","camera":{"eye":[20,-1,20],"target":[20,0.05,20],"fov":60}})");
+  Frame onto = next_frame(ws);
+  EXPECT_GT(onto.id, under.id);
+  EXPECT_GT(onto.jpeg.size(), 100u);
+}
+
 TEST(CrowdApi, StreamSendsJpegFramesWithStatsAndFollowsTheCamera) {
   LiveServer s(crowd_flags());
   WsClient ws(s.port(), "/api/v1/crowd/stream");
