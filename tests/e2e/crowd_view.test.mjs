@@ -3,7 +3,9 @@
 // /api/v1/crowd/stream. Checks that frames are drawn on the canvas, that a camera drag and the
 // walk keys change the picture (with the animation off, so nothing else does), that the stats
 // overlay shows the server's numbers, and that the resolution, mode, PoE and heat map switches
-// reach the server (its stats and the picture say so).
+// reach the server (its stats and the picture say so). The heat map's legend shows with it; drags
+// and keys that would take the eye under the floor or into a wall (the occluder boxes the API
+// lists) leave it above the ground and outside every box.
 //
 // The server renders with software GL here: a frame can take a few hundred ms, and the first
 // stream waits while the scene is built (models loaded, cluster hierarchies built), which can
@@ -13,7 +15,9 @@
 // Run from the repository root: node tests/e2e/crowd_view.test.mjs
 // Environment: TOURMAP_BIN (build/tourmap), TOURMAP_WEB_ROOT (build/web),
 // TOURMAP_DATA_DIR (../shared/data), TOURMAP_MANIFEST (scripts/sample-data.json).
+// TOURMAP_SCREENSHOTS: a directory to save the heat map legend's screenshots in (optional).
 
+import { join } from 'node:path';
 import { STEP_TIMEOUT_MS, apiJson, check, checkNoConsoleErrors, openApp, openPage, runTest, serveSampleData } from './support.mjs';
 
 /** ctest gives every browser test 180 s; the first frame may take up to FIRST_FRAME_TIMEOUT_MS of it. */
@@ -26,6 +30,54 @@ const SCENE = 'office';
 const CANVAS = '[data-testid=crowd-canvas]';
 const STATS = '[data-testid=crowd-stats]';
 const VIEWPORT = { width: 1300, height: 600 };
+
+/** The eye keeps this far from a box (orbit-camera.ts BOX_MARGIN is 0.3 m; the eye is rounded to 0.1 mm). */
+const BOX_CLEARANCE = 0.29;
+/** The eye the user steers stays 0.5 m above the ground; pushed out of a wall towards the target, 0.2 m. */
+const EYE_FLOOR = 0.2 - 1e-3;
+
+/** The box (grown by `margin`) that holds `p`, or undefined. */
+function boxHolding(p, boxes, margin) {
+  return boxes.find((box) => [0, 1, 2].every((axis) => p[axis] > box.min[axis] - margin && p[axis] < box.max[axis] + margin));
+}
+
+/** Records every eye the camera reports (data-eye) from now on; eyesSeen returns them. */
+async function recordEyes(page) {
+  await page.locator(CANVAS).evaluate((canvas) => {
+    window.eyesSeen = [];
+    new MutationObserver(() => window.eyesSeen.push(canvas.dataset.eye)).observe(canvas, { attributeFilter: ['data-eye'] });
+  });
+}
+
+async function eyesSeen(page) {
+  const eyes = await page.evaluate(() => window.eyesSeen.splice(0));
+  return eyes.map((text) => text.split(',').map(Number));
+}
+
+/** Fails unless every eye is above the ground and outside every occluder box. */
+function checkEyes(eyes, boxes, what) {
+  check(eyes.length > 0, `${what}: the camera reported no eye`);
+  for (const eye of eyes) {
+    check(eye.every(Number.isFinite), `${what}: the eye is [${eye}]`);
+    check(eye[1] >= EYE_FLOOR, `${what}: the eye went down to y = ${eye[1]} (under the floor)`);
+    const box = boxHolding(eye, boxes, BOX_CLEARANCE);
+    check(!box, `${what}: the eye [${eye}] is in the occluder box ${JSON.stringify(box)}`);
+  }
+}
+
+/** The server's heat ramp (core/render/crowd_shaders.hpp heat()), as CSS rgb() of 0..255. */
+function shaderHeat(t) {
+  const channel = (centre) => Math.round(Math.min(1, Math.max(0, 1.5 - Math.abs(4 * t - centre))) * 255);
+  return `rgb(${channel(3)}, ${channel(2)}, ${channel(1)})`;
+}
+
+/** A left-button drag by (dx, dy) in 20 steps. */
+async function drag(page, fromX, fromY, dx, dy) {
+  await page.mouse.move(fromX, fromY);
+  await page.mouse.down();
+  for (let i = 1; i <= 20; i++) await page.mouse.move(fromX + (dx * i) / 20, fromY + (dy * i) / 20);
+  await page.mouse.up();
+}
 
 async function frameCount(page) {
   return page.locator(CANVAS).evaluate((canvas) => Number(canvas.dataset.frames));
@@ -150,6 +202,8 @@ async function run(state) {
   check(first.colours > 8, `the canvas shows ${first.colours} colours: nothing was drawn`);
   check(stats.mode === 'vdr+oc', `the first frames were rendered in mode ${stats.mode}, not the default vdr+oc`);
   check(stats.triangles > 0, `the stats report ${stats.triangles} triangles`);
+  // The numbers are folded (they would cover the picture): open them to read them.
+  await page.locator(STATS).evaluate((details) => (details.open = true));
   const trianglesText = await page.locator(`${STATS} [data-stat=triangles] dd`).innerText();
   check(/\d/.test(trianglesText), `the stats overlay shows triangles as "${trianglesText}"`);
   check(Number.isFinite(stats.latencyMs) && stats.latencyMs > -1000 && stats.latencyMs < 60_000, `frame latency ${stats.latencyMs} ms`);
@@ -217,6 +271,67 @@ async function run(state) {
   const heat = await snapshot(page);
   check(heat.hash !== plain.hash, 'the picture did not change with the heat map on');
   state.summary.push('heat map');
+
+  // Its legend: shown with it, the server's ramp from the coarsest (t = 0) to full detail (t = 1).
+  const legend = page.locator('[data-testid=crowd-heat-legend]');
+  check(await legend.isVisible(), 'the heat map legend is not shown with the heat map on');
+  const legendText = await legend.innerText();
+  check(/fewer triangles/i.test(legendText) && /full detail/i.test(legendText), `the legend says "${legendText}"`);
+  const ramp = await legend.locator('.crowd-heat-ramp').evaluate((element) => getComputedStyle(element).backgroundImage);
+  const rampColours = ramp.match(/rgb\([^)]*\)/g) ?? [];
+  const expected = Array.from({ length: 9 }, (_, i) => shaderHeat(i / 8));
+  check(JSON.stringify(rampColours) === JSON.stringify(expected), `the legend's ramp ${rampColours} is not the renderer's ${expected}`);
+  const shots = process.env.TOURMAP_SCREENSHOTS;
+  if (shots) {
+    for (const [name, size] of [['desktop', { width: 1280, height: 800 }], ['phone', { width: 390, height: 844 }]]) {
+      await page.setViewportSize(size);
+      await waitForQuiet(page, (await frameCount(page)) + 1, FIRST_FRAME_TIMEOUT_MS);
+      await page.screenshot({ path: join(shots, `crowd-heat-legend-${name}.png`) });
+    }
+    await page.setViewportSize(VIEWPORT);
+    await waitForQuiet(page, (await frameCount(page)) + 1);
+  }
+  await page.locator('[data-testid=crowd-heatmap]').uncheck();
+  check(!(await legend.isVisible()), 'the heat map legend stays with the heat map off');
+  await page.locator('[data-testid=crowd-heatmap]').check();
+  check(await legend.isVisible(), 'the heat map legend is not back with the heat map on again');
+  state.summary.push('heat legend');
+
+  // The camera stays above the floor and out of the walls, whatever the drags and keys ask.
+  const boxes = scene.occluder_boxes;
+  check(Array.isArray(boxes) && boxes.length === scene.occluders && boxes.length > 0, `the API lists ${boxes?.length} occluder boxes of ${scene.occluders}`);
+  await recordEyes(page);
+  await page.locator(CANVAS).focus();
+  await page.keyboard.press('Home');
+  // Drag up by 400 px: the orbit would take the eye 80 degrees below the target, far under the floor.
+  await drag(page, x, y + 200, 0, -400);
+  checkEyes(await eyesSeen(page), boxes, 'dragging down to the floor');
+  const floorEye = (await page.locator(CANVAS).getAttribute('data-eye')).split(',').map(Number);
+  check(floorEye[1] < 1, `the drag did not bring the eye near the floor (y = ${floorEye[1]}): the test tests nothing`);
+  // Down with Q (the target to the ground), close in with +, then walk through the rooms and along them.
+  await page.keyboard.down('KeyQ');
+  await page.waitForTimeout(500);
+  await page.keyboard.up('KeyQ');
+  for (let i = 0; i < 30; i++) await page.keyboard.press('Equal');
+  for (const [key, ms] of [['KeyW', 2500], ['KeyD', 2500], ['KeyS', 2500], ['KeyA', 1500]]) {
+    await page.keyboard.down(key);
+    await page.waitForTimeout(ms);
+    await page.keyboard.up(key);
+  }
+  const walk = await eyesSeen(page);
+  checkEyes(walk, boxes, 'walking through the office close to the floor');
+  // Orbit all the way around close to the floor: the eye swings through the walls of the room.
+  await drag(page, x - 300, y, 800, 0);
+  const swing = await eyesSeen(page);
+  checkEyes(swing, boxes, 'orbiting close to the floor');
+  // Far out, then down again (the wheel, a drag): a long way from the target, close to the floor.
+  for (let i = 0; i < 10; i++) await page.mouse.wheel(0, 400);
+  await drag(page, x, y + 200, 0, -400);
+  checkEyes(await eyesSeen(page), boxes, 'zooming out and down');
+  await waitForQuiet(page, 1);
+  const low = await snapshot(page);
+  check(low.colours > 8, `the view from close to the floor shows ${low.colours} colours`);
+  state.summary.push(`camera: ${walk.length + swing.length} eyes while walking and orbiting near the floor, all above it and out of the ${boxes.length} walls`);
 
   let hash = await page.evaluate(() => window.location.hash);
   check(hash === `#/crowd/${SCENE}`, `the route is ${hash}`);

@@ -162,7 +162,13 @@ async function swapAtSize(state, baseUrl, page, size) {
     window.tourmapTestMarker = 'not reloaded';
   });
 
-  // The default layout: the fast one, with the promise of an improvement.
+  // The default layout: the fast one, with the promise of an improvement. On a phone the
+  // switches sit in a folded bottom sheet: unfold it first.
+  await page.evaluate(() => {
+    const sheet = document.querySelector('.view-metro .sheet');
+    const handle = sheet?.querySelector('.sheet-handle');
+    if (handle && getComputedStyle(handle).display !== 'none' && sheet.dataset.open !== 'true') handle.click();
+  });
   await page.click('[data-testid=mode-switch] [data-value=octilinear]');
   await page.waitForSelector(`${MAP}[data-mode=octilinear][data-transition=idle][data-layout=ready][data-layout-solver=fast]`);
   const info = page.locator('[data-testid=layout-info]');

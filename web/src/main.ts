@@ -5,6 +5,7 @@ import './styles/panels.css';
 import './styles/deform.css';
 import './styles/metro.css';
 import './styles/crowd.css';
+import './styles/sheet.css';
 import { EventStream } from './api/events';
 import { navigate, routeHash, watchRoute, type Route, type ViewName } from './router';
 import { Shell } from './ui/shell';

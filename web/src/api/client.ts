@@ -31,6 +31,8 @@ export class ApiError extends Error {
     readonly code: string,
     message: string,
     readonly field?: string,
+    /** The API path asked for (under /api/v1), to say what was not found. */
+    readonly path?: string,
   ) {
     super(message);
     this.name = 'ApiError';
@@ -41,67 +43,112 @@ export function isAbort(error: unknown): boolean {
   return error instanceof DOMException && error.name === 'AbortError';
 }
 
-async function errorFrom(response: Response): Promise<ApiError> {
+async function errorFrom(response: Response, path: string): Promise<ApiError> {
   try {
     const body = (await response.json()) as { error?: { code?: string; message?: string; field?: string } };
     if (body.error?.message) {
-      return new ApiError(response.status, body.error.code ?? 'error', body.error.message, body.error.field ?? undefined);
+      return new ApiError(response.status, body.error.code ?? 'error', body.error.message, body.error.field ?? undefined, path);
     }
   } catch {
     // Not the JSON error envelope (a proxy's HTML page, say): fall through to the status line.
   }
-  return new ApiError(response.status, 'http_error', `${response.status} ${response.statusText || 'error'}`);
+  return new ApiError(response.status, 'http_error', `${response.status} ${response.statusText || 'error'}`, undefined, path);
 }
 
 async function requestJson<T>(path: string, init: RequestInit): Promise<T> {
   return (await requestWithHeaders<T>(path, init)).body;
 }
 
-/** Retries of a request the server asked to repeat later (429 or 503 with Retry-After). */
-const MAX_RETRIES = 3;
-/** Longest wait before a retry, whatever Retry-After says. */
-const MAX_RETRY_WAIT_MS = 5000;
+// ---- Busy answers (429, 503): wait as asked and try again ----
+
+/** Retries of one request the server asked to repeat later (429 or 503). */
+const MAX_RETRIES = 6;
+/** The wait when Retry-After is missing or unreadable (doubled on every retry, up to the cap). */
+const DEFAULT_RETRY_MS = 1000;
+/** Longest single wait, whatever Retry-After says. */
+const MAX_RETRY_WAIT_MS = 30_000;
+/** Longest total waiting for one request: after this the busy answer is the error. */
+const MAX_TOTAL_WAIT_MS = 60_000;
 
 /** Resolves after `ms`, or rejects with an AbortError when `signal` aborts first. */
 function wait(ms: number, signal?: AbortSignal | null): Promise<void> {
   return new Promise((resolve, reject) => {
     if (signal?.aborted) return reject(new DOMException('aborted', 'AbortError'));
-    const timer = window.setTimeout(resolve, ms);
-    signal?.addEventListener(
-      'abort',
-      () => {
-        window.clearTimeout(timer);
-        reject(new DOMException('aborted', 'AbortError'));
-      },
-      { once: true },
-    );
+    const abort = () => {
+      window.clearTimeout(timer);
+      reject(new DOMException('aborted', 'AbortError'));
+    };
+    const timer = window.setTimeout(() => {
+      signal?.removeEventListener('abort', abort);
+      resolve();
+    }, ms);
+    signal?.addEventListener('abort', abort, { once: true });
   });
 }
 
-/** The wait a 429 or 503 asks for, or null for other answers (retried quietly, not shown). */
-function retryDelayMs(response: Response): number | null {
-  if (response.status !== 429 && response.status !== 503) return null;
-  const seconds = Number(response.headers.get('Retry-After'));
-  if (!Number.isFinite(seconds) || seconds < 0) return null;
-  return Math.min(Math.max(seconds * 1000, 250), MAX_RETRY_WAIT_MS);
+/**
+ * The wait (ms) a Retry-After header asks for: delay-seconds or an HTTP date (RFC 9110 10.2.3);
+ * null when missing or unreadable.
+ */
+export function retryAfterMs(header: string | null, now = Date.now()): number | null {
+  if (header === null || header.trim() === '') return null;
+  const text = header.trim();
+  if (/^\d+$/.test(text)) return Number(text) * 1000;
+  const date = Date.parse(text);
+  return Number.isFinite(date) ? Math.max(0, date - now) : null;
+}
+
+/** The wait before retry `attempt` (0 first): as asked, else exponential; capped, plus up to 20 % jitter. */
+function retryDelayMs(response: Response, attempt: number): number {
+  const asked = retryAfterMs(response.headers.get('Retry-After')) ?? DEFAULT_RETRY_MS * 2 ** attempt;
+  const capped = Math.min(Math.max(asked, 100), MAX_RETRY_WAIT_MS);
+  // Jitter: clients turned away together do not all come back in the same instant.
+  return capped * (1 + Math.random() * 0.2);
+}
+
+/** Requests now waiting to retry a busy answer; listeners hear when that becomes true or false. */
+let waitingRequests = 0;
+const busyListeners = new Set<(busy: boolean) => void>();
+
+/** Calls `listener(busy)` whenever requests start or stop waiting on a busy server; returns the unsubscriber. */
+export function onBusyChange(listener: (busy: boolean) => void): () => void {
+  busyListeners.add(listener);
+  return () => busyListeners.delete(listener);
+}
+
+function setWaiting(delta: number): void {
+  const before = waitingRequests > 0;
+  waitingRequests += delta;
+  const after = waitingRequests > 0;
+  if (before !== after) for (const listener of busyListeners) listener(after);
 }
 
 /** The successful answer to a request, retrying quietly where the server asks to come back later. */
 async function fetchOk(path: string, init: RequestInit): Promise<Response> {
+  let waited = 0;
   for (let attempt = 0; ; attempt++) {
     let response: Response;
     try {
       response = await fetch(API_ROOT + path, { ...init, headers: { Accept: 'application/json', ...init.headers } });
     } catch (error) {
       if (isAbort(error)) throw error;
-      throw new ApiError(0, 'network', 'The tourmap server cannot be reached. Check your connection and try again.');
+      console.warn(`tourmap: ${API_ROOT}${path} failed:`, error);
+      throw new ApiError(0, 'network', 'The map service cannot be reached. Check your connection and try again.', undefined, path);
     }
     if (response.ok) return response;
-    // Busy or rate limited: the server says when to come back; try again quietly a few times.
-    const delay = retryDelayMs(response);
-    if (delay === null || attempt >= MAX_RETRIES) throw await errorFrom(response);
-    await response.body?.cancel();
-    await wait(Math.min(delay * (attempt + 1), MAX_RETRY_WAIT_MS), init.signal);
+    const busy = response.status === 429 || response.status === 503;
+    const delay = busy ? retryDelayMs(response, attempt) : 0;
+    if (!busy || attempt >= MAX_RETRIES || waited + delay > MAX_TOTAL_WAIT_MS) throw await errorFrom(response, path);
+    // Busy or rate limited: the server says when to come back; wait quietly and try again.
+    console.info(`tourmap: ${API_ROOT}${path} answered ${response.status}; retrying in ${Math.round(delay)} ms`);
+    await response.body?.cancel().catch(() => {});
+    waited += delay;
+    setWaiting(+1);
+    try {
+      await wait(delay, init.signal);
+    } finally {
+      setWaiting(-1);
+    }
   }
 }
 
@@ -213,8 +260,10 @@ export async function postDeform(kind: DeformKind, body: DeformBody, signal?: Ab
 }
 
 /** The query string of a layout's parameters, in a fixed order (the same layout for /layout and /clusters). */
-export function layoutQuery(params: LayoutParams): string {
-  return `lengths=${segment(params.lengths)}&solver=${segment(params.solver)}`;
+export function layoutQuery(params: LayoutParams & { interests?: string }): string {
+  // The tourist's interests (api/interests.ts), when set, choose another layout.
+  const interests = params.interests ? `&interests=${segment(params.interests)}` : '';
+  return `lengths=${segment(params.lengths)}&solver=${segment(params.solver)}${interests}`;
 }
 
 export interface LayoutAnswer {
@@ -238,9 +287,10 @@ export async function fetchLayout(id: string, params: LayoutParams, signal?: Abo
 const coordinate = (value: number) => String(Math.round(value * 1e6) / 1e6);
 
 /** GET /cities/{id}/visual-worth: a width x height raster over a lon/lat bbox. */
-export function fetchVisualWorth(id: string, bbox: BBox, width: number, height: number, signal?: AbortSignal): Promise<VisualWorthRaster> {
+export function fetchVisualWorth(id: string, bbox: BBox, width: number, height: number, signal?: AbortSignal, interests = ''): Promise<VisualWorthRaster> {
+  const weights = interests ? `&interests=${segment(interests)}` : '';
   return getJson<VisualWorthRaster>(
-    `/cities/${segment(id)}/visual-worth?bbox=${bbox.map(coordinate).join(',')}&width=${width}&height=${height}`,
+    `/cities/${segment(id)}/visual-worth?bbox=${bbox.map(coordinate).join(',')}&width=${width}&height=${height}${weights}`,
     signal,
   );
 }
@@ -250,15 +300,18 @@ export interface ClusterQuery {
   /** geo: min_lon,min_lat,max_lon,max_lat; layout: x0,y0,x1,y1 in the layout frame */
   bbox: [number, number, number, number];
   m: number;
-  /** space=layout: the parameters of the layout drawn. */
-  layout?: LayoutParams;
+  /** space=layout: the parameters of the layout drawn (with its interests). */
+  layout?: LayoutParams & { interests?: string };
+  /** space=geo: the tourist's interests (the `interests` parameter), if any. */
+  interests?: string;
 }
 
 /** The path (under /api/v1) of a /clusters request. */
 export function clustersPath(id: string, query: ClusterQuery): string {
   const bbox = query.space === 'geo' ? query.bbox.map(coordinate) : query.bbox.map((value) => value.toFixed(1));
   const layout = query.space === 'layout' && query.layout ? `&${layoutQuery(query.layout)}` : '';
-  return `/cities/${segment(id)}/clusters?space=${query.space}&bbox=${bbox.join(',')}&m=${query.m}${layout}`;
+  const interests = query.space === 'geo' && query.interests ? `&interests=${segment(query.interests)}` : '';
+  return `/cities/${segment(id)}/clusters?space=${query.space}&bbox=${bbox.join(',')}&m=${query.m}${layout}${interests}`;
 }
 
 /** GET /cities/{id}/clusters: the active POI clusters of a window. */

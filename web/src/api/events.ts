@@ -23,11 +23,20 @@ const PING_INTERVAL_MS = 45000;
 export class EventStream {
   private retryMs = FIRST_RETRY_MS;
   private catalogVersion?: number;
+  private retryTimer = 0;
 
   constructor(private readonly handlers: EventStreamHandlers) {}
 
   start(): void {
     this.connect();
+    // Back online (a phone leaving a tunnel): reconnect now rather than after the backoff.
+    window.addEventListener('online', () => {
+      if (!this.retryTimer) return;
+      window.clearTimeout(this.retryTimer);
+      this.retryTimer = 0;
+      this.retryMs = FIRST_RETRY_MS;
+      this.connect();
+    });
   }
 
   private connect(): void {
@@ -72,6 +81,9 @@ export class EventStream {
   private scheduleReconnect(): void {
     const delay = this.retryMs * (0.75 + Math.random() * 0.5);
     this.retryMs = Math.min(this.retryMs * 2, MAX_RETRY_MS);
-    window.setTimeout(() => this.connect(), delay);
+    this.retryTimer = window.setTimeout(() => {
+      this.retryTimer = 0;
+      this.connect();
+    }, delay);
   }
 }

@@ -491,6 +491,8 @@ export interface CrowdScene {
   triangles: number | null;
   /** How many static occluder boxes (walls, booths, rocks) the scene has. */
   occluders: number;
+  /** The occluders of the default crowd as axis-aligned boxes (at most 256; absent from older servers). */
+  occluder_boxes?: CrowdBounds[];
   bounds: CrowdBounds;
   default_camera: CrowdCamera;
   count: { default: number; min: number; max: number };

@@ -18,16 +18,16 @@ export interface CrowdSettings {
 }
 
 const MODE_LABELS: Record<string, { label: string; title: string }> = {
-  nolod: { label: 'NoLOD', title: 'Every character at full resolution' },
-  vdr: { label: 'VDR', title: 'View-dependent level of detail: distant characters with fewer triangles' },
-  'vdr+oc': { label: 'VDR+OC', title: 'Level of detail and occlusion culling: hidden clusters are not drawn' },
+  nolod: { label: 'Full', title: 'Every person in full detail (NoLOD)' },
+  vdr: { label: 'Simplify', title: 'Distant people with fewer triangles (view-dependent level of detail, VDR)' },
+  'vdr+oc': { label: 'Fastest', title: 'Distant people simplified and hidden ones not drawn at all (VDR + occlusion culling)' },
 };
 
 const RESOLUTIONS: { value: Resolution; label: string }[] = [
-  { value: 'device', label: 'Sharp (device pixels)' },
-  { value: 1, label: 'Full (CSS pixels)' },
-  { value: 0.5, label: 'Half' },
-  { value: 0.25, label: 'Quarter' },
+  { value: 'device', label: 'Sharpest' },
+  { value: 1, label: 'Normal' },
+  { value: 0.5, label: 'Half (faster)' },
+  { value: 0.25, label: 'Quarter (fastest)' },
 ];
 
 /** The PoE slider spans 0.1 … 16 pixels on a log scale (within the server's limits). */
@@ -55,7 +55,7 @@ export class ControlsPanel {
   private poeRange = { ...POE_RANGE };
 
   constructor(private readonly onChange: () => void) {
-    this.modeSwitch = h('div', { class: 'mode-switch', role: 'group', 'aria-label': 'Level of detail', 'data-testid': 'crowd-mode' });
+    this.modeSwitch = h('div', { class: 'mode-switch', role: 'group', 'aria-label': 'Drawing', 'data-testid': 'crowd-mode' });
     this.poe = h('input', {
       type: 'range',
       id: 'crowd-poe',
@@ -65,9 +65,9 @@ export class ControlsPanel {
       'data-testid': 'crowd-poe',
       'aria-describedby': 'crowd-poe-help',
     });
-    this.poeOutput = h('output', { for: 'crowd-poe' });
+    this.poeOutput = h('output', { for: 'crowd-poe', class: 'num' });
     this.heatmap = h('input', { type: 'checkbox', 'data-testid': 'crowd-heatmap' });
-    this.heatNote = h('p', { class: 'note', hidden: true }, 'Heat map: each cluster is coloured by its level of detail, from coarse to full resolution.');
+    this.heatNote = h('p', { class: 'note', hidden: true }, 'Each group of people is coloured by how much detail it is drawn with, from coarse to full (a level-of-detail heat map).');
     this.animate = h('input', { type: 'checkbox', checked: true, 'data-testid': 'crowd-animate' });
     this.resolution = h(
       'select',
@@ -76,7 +76,7 @@ export class ControlsPanel {
     );
     this.resolution.value = String(DEFAULTS.resolution);
     this.quality = h('input', { type: 'range', id: 'crowd-quality', min: 10, max: 95, step: 1, value: DEFAULTS.quality, 'data-testid': 'crowd-quality' });
-    this.qualityOutput = h('output', { for: 'crowd-quality' }, String(DEFAULTS.quality));
+    this.qualityOutput = h('output', { for: 'crowd-quality', class: 'num' }, String(DEFAULTS.quality));
     this.count = h('input', { type: 'number', id: 'crowd-count', class: 'number-input', min: 1, step: 1, 'data-testid': 'crowd-count' });
 
     this.setPoe(DEFAULTS.poe);
@@ -120,22 +120,32 @@ export class ControlsPanel {
 
     const slider = (label: string, input: HTMLInputElement, output: HTMLOutputElement) =>
       h('div', { class: 'slider-row' }, h('label', { for: input.id }, label), input, output);
+    // What a visitor changes stays in view; the crowd size and the JPEG quality go behind Advanced.
     this.element = h(
       'div',
       { class: 'crowd-controls' },
-      this.modeSwitch,
-      slider('PoE', this.poe, this.poeOutput),
+      h('div', { class: 'field-row' }, h('span', { class: 'field', 'aria-hidden': 'true' }, 'Drawing'), this.modeSwitch),
+      slider('Simplify', this.poe, this.poeOutput),
       h(
         'p',
         { class: 'note', id: 'crowd-poe-help' },
-        'Pixels of error: how far, on screen, a simplified character may stray from the full one. Larger: fewer triangles.',
+        'How far, on screen, a simplified person may stray from the full one (pixels of error, PoE). More: fewer triangles, faster.',
       ),
-      h('label', { class: 'check' }, this.heatmap, 'Heat map of the level of detail'),
-      this.heatNote,
       h('label', { class: 'check' }, this.animate, 'Animate the crowd'),
-      h('label', { class: 'inline-field', for: 'crowd-count' }, 'Characters', this.count),
-      h('label', { class: 'inline-field', for: 'crowd-resolution' }, 'Resolution', this.resolution),
-      slider('JPEG', this.quality, this.qualityOutput),
+      h('label', { class: 'check' }, this.heatmap, 'Colour by detail'),
+      this.heatNote,
+      h('label', { class: 'inline-field', for: 'crowd-resolution' }, 'Sharpness', this.resolution),
+      h(
+        'details',
+        { class: 'advanced', 'data-testid': 'crowd-advanced' },
+        h('summary', {}, 'Advanced'),
+        h(
+          'div',
+          { class: 'advanced-body' },
+          h('label', { class: 'inline-field', for: 'crowd-count' }, 'People', this.count),
+          slider('JPEG quality', this.quality, this.qualityOutput),
+        ),
+      ),
     );
     this.setModes(['nolod', 'vdr', 'vdr+oc']);
   }

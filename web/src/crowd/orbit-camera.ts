@@ -9,8 +9,18 @@ const MAX_PITCH = (89 * Math.PI) / 180;
 const MIN_DISTANCE = 0.3;
 /** Key moves: the scene's diagonal times this per second (at least 1 m/s); Shift: 3 times faster. */
 const KEY_SPEED = 0.2;
-/** The target stays within the scene's bounds grown by this share of their size. */
+/** The target stays within the scene's bounds grown by this share of their size (and not under the ground). */
 const BOUNDS_MARGIN = 0.5;
+/** The eye the user steers stays this high above the ground plane (y = 0), in metres. */
+const EYE_MIN_HEIGHT = 0.5;
+/** After being pushed out of a wall towards the target, the eye may be no lower than this. */
+const EYE_FLOOR = 0.2;
+/** The eye keeps this far from an occluder box (metres): the renderer's near plane is 0.1 m. */
+const BOX_MARGIN = 0.3;
+/** Pushes out of boxes tried before a move is refused (walls meet at corners: one push can land in the next). */
+const MAX_PUSHES = 16;
+/** A pushed eye ends up this far outside the box it left. */
+const PUSH_EPSILON = 1e-3;
 
 type Move = 'forward' | 'back' | 'left' | 'right' | 'up' | 'down';
 const MOVE_KEYS: Record<string, Move> = {
@@ -39,11 +49,50 @@ const cross = (a: Vec3, b: Vec3): Vec3 => [a[1] * b[2] - a[2] * b[1], a[2] * b[0
 const clamp = (value: number, min: number, max: number) => Math.min(max, Math.max(min, value));
 const round = (value: number) => Math.round(value * 1e4) / 1e4;
 
+/** Whether `p` is strictly inside `box` grown by `margin`. */
+function inside(p: Vec3, box: CrowdBounds, margin: number): boolean {
+  return [0, 1, 2].every((axis) => p[axis]! > box.min[axis]! - margin && p[axis]! < box.max[axis]! + margin);
+}
+
+/** The interval [t0, t1] of the line origin + t * dir inside `box` grown by `margin` (slab method), or null. */
+function lineInterval(origin: Vec3, dir: Vec3, box: CrowdBounds, margin: number): [number, number] | null {
+  let t0 = -Infinity;
+  let t1 = Infinity;
+  for (let axis = 0; axis < 3; axis++) {
+    const lo = box.min[axis]! - margin - origin[axis]!;
+    const hi = box.max[axis]! + margin - origin[axis]!;
+    const d = dir[axis]!;
+    if (Math.abs(d) < 1e-12) {
+      if (lo > 0 || hi < 0) return null;
+      continue;
+    }
+    const a = lo / d;
+    const b = hi / d;
+    t0 = Math.max(t0, Math.min(a, b));
+    t1 = Math.min(t1, Math.max(a, b));
+  }
+  return t0 <= t1 ? [t0, t1] : null;
+}
+
+interface OrbitState {
+  target: Vec3;
+  distance: number;
+  yaw: number;
+  pitch: number;
+}
+
 /**
  * An orbit camera on an element: drag orbits around the target, the wheel (or a pinch) dollies,
  * right-drag, middle-drag or Shift-drag pans; with the element focused, WASD / arrow keys move
  * the target on the ground, Q/E (PageDown/PageUp) down and up, +/- dolly and Home goes back to
  * the scene's camera. Every change calls onChange (at most once per animation frame for keys).
+ *
+ * The eye stays above the ground (the pitch and distance are clamped so it is EYE_MIN_HEIGHT up)
+ * and out of the scene's occluder boxes: an eye that would be inside one is pulled along the view
+ * ray towards the target to the box's near side (or, when the target is inside the box too, out
+ * past its far side); the distance the user chose is kept, so the eye returns when the wall no
+ * longer is in the way. A move that cannot be resolved so is not made. The element reports the
+ * eye and target as data-eye and data-target ("x,y,z").
  */
 export class OrbitCamera {
   private target: Vec3 = [0, 0, 0];
@@ -52,6 +101,7 @@ export class OrbitCamera {
   private pitch = 0;
   private fov = 60;
   private bounds: CrowdBounds = { min: [-1, -1, -1], max: [1, 1, 1] };
+  private occluders: CrowdBounds[] = [];
   private home?: CrowdCamera;
   private readonly pointers = new Map<number, { x: number; y: number; pan: boolean }>();
   private readonly keys = new Set<Move>();
@@ -76,28 +126,84 @@ export class OrbitCamera {
     element.addEventListener('blur', () => this.stopKeys());
   }
 
-  /** Puts the camera where the scene says (no onChange: the caller sends the view itself). */
-  reset(camera: CrowdCamera, bounds: CrowdBounds): void {
+  /**
+   * Puts the camera where the scene says (no onChange: the caller sends the view itself). The
+   * occluder boxes, when given, replace the previous ones.
+   */
+  reset(camera: CrowdCamera, bounds: CrowdBounds, occluders?: CrowdBounds[]): void {
     this.home = camera;
     this.bounds = bounds;
+    if (occluders) this.occluders = occluders;
     this.target = [...camera.target];
     this.fov = camera.fov;
     const offset = sub(camera.eye, camera.target);
     this.distance = Math.max(MIN_DISTANCE, length(offset));
     this.yaw = Math.atan2(offset[0], offset[2]);
     this.pitch = clamp(Math.asin(clamp(offset[1] / this.distance, -1, 1)), MIN_PITCH, MAX_PITCH);
+    this.keepAboveGround();
     this.moved = false;
     this.stopKeys();
+    this.publish();
   }
 
   get camera(): CrowdCamera {
-    const eye = add(this.target, this.offset());
+    const eye = this.eye() ?? add(this.target, this.offset());
     return { eye: eye.map(round) as Vec3, target: this.target.map(round) as Vec3, fov: this.fov };
   }
 
-  private offset(): Vec3 {
+  private offset(distance = this.distance): Vec3 {
     const c = Math.cos(this.pitch);
-    return [this.distance * c * Math.sin(this.yaw), this.distance * Math.sin(this.pitch), this.distance * c * Math.cos(this.yaw)];
+    return [distance * c * Math.sin(this.yaw), distance * Math.sin(this.pitch), distance * c * Math.cos(this.yaw)];
+  }
+
+  /** Raises the pitch (and if need be the distance) so the eye the user steers is EYE_MIN_HEIGHT above the ground. */
+  private keepAboveGround(): void {
+    const rise = EYE_MIN_HEIGHT - this.target[1];
+    if (this.target[1] + this.distance * Math.sin(this.pitch) >= EYE_MIN_HEIGHT) return;
+    const sinMax = Math.sin(MAX_PITCH);
+    if (rise > this.distance * sinMax) this.distance = rise / sinMax;
+    this.pitch = Math.max(this.pitch, Math.asin(clamp(rise / this.distance, -1, 1)));
+  }
+
+  /**
+   * The eye: at the chosen distance, or pulled out of the occluder box it would be in (see the
+   * class comment); null when no place on the view ray is free (the move is then not made).
+   */
+  private eye(): Vec3 | null {
+    const direction = normalize(this.offset(1));
+    const free = (distance: number) => this.occluders.find((box) => inside(add(this.target, direction, distance), box, BOX_MARGIN)) === undefined;
+    const push = (towards: boolean): number | null => {
+      let distance = this.distance;
+      for (let i = 0; i < MAX_PUSHES; i++) {
+        const box = this.occluders.find((candidate) => inside(add(this.target, direction, distance), candidate, BOX_MARGIN));
+        if (!box) return distance;
+        const span = lineInterval(this.target, direction, box, BOX_MARGIN);
+        if (!span) return null;
+        distance = towards ? span[0] - PUSH_EPSILON : span[1] + PUSH_EPSILON;
+        if (distance <= 0) return null;
+      }
+      return free(distance) ? distance : null;
+    };
+    const distance = push(true) ?? push(false);
+    if (distance === null) return null;
+    const eye = add(this.target, direction, distance);
+    return eye[1] >= EYE_FLOOR ? eye : null;
+  }
+
+  private snapshot(): OrbitState {
+    return { target: [...this.target], distance: this.distance, yaw: this.yaw, pitch: this.pitch };
+  }
+
+  /** Keeps the eye above ground; undoes the move since `before` when the eye has no free place. */
+  private settle(before: OrbitState): void {
+    this.keepAboveGround();
+    if (this.eye() === null) Object.assign(this, before);
+  }
+
+  private publish(): void {
+    const { eye, target } = this.camera;
+    this.element.dataset.eye = eye.join(',');
+    this.element.dataset.target = target.join(',');
   }
 
   private get sceneSize(): number {
@@ -106,18 +212,23 @@ export class OrbitCamera {
 
   private changed(): void {
     this.moved = true;
+    this.publish();
     this.onChange(this.camera);
   }
 
   // ---- Moves ----
 
   private orbit(dx: number, dy: number): void {
+    const before = this.snapshot();
     this.yaw -= dx * ORBIT_SPEED;
     this.pitch = clamp(this.pitch + dy * ORBIT_SPEED, MIN_PITCH, MAX_PITCH);
+    this.settle(before);
   }
 
   private dolly(factor: number): void {
+    const before = this.snapshot();
     this.distance = clamp(this.distance * factor, MIN_DISTANCE, 4 * this.sceneSize);
+    this.settle(before);
   }
 
   /** Moves the target so the point under the pointer (at the target's depth) follows it. */
@@ -131,11 +242,15 @@ export class OrbitCamera {
   }
 
   private moveTarget(delta: Vec3): void {
+    const before = this.snapshot();
     const { min, max } = this.bounds;
     this.target = this.target.map((value, axis) => {
       const margin = (max[axis]! - min[axis]!) * BOUNDS_MARGIN + 1;
-      return clamp(value + delta[axis]!, min[axis]! - margin, max[axis]! + margin);
+      // Not under the ground: a target below it drags the eye down there too.
+      const low = axis === 1 ? Math.max(0, min[axis]! - margin) : min[axis]! - margin;
+      return clamp(value + delta[axis]!, low, max[axis]! + margin);
     }) as Vec3;
+    this.settle(before);
   }
 
   // ---- Pointer ----

@@ -144,7 +144,7 @@ export class FocusTool implements DeformTool {
       h(
         'p',
         { class: 'hint' },
-        'Click the map to add a focus region: its roads are drawn Z times larger while the rest of the map gives way. Drag a region’s centre to move it and its rim to resize it; Delete removes the selected one.',
+        'Tap or click the map to enlarge the streets around that spot (a focus region) while the rest of the map gives way. Drag a region’s centre to move it and its rim to resize it; Delete removes the selected one.',
       ),
       this.list,
       this.empty,

@@ -68,7 +68,7 @@ export class StatsBox {
     ];
     this.table.replaceChildren(
       ...rows.map(({ term, value, key, wide, title }) =>
-        h('div', { class: wide ? 'wide' : undefined, 'data-stat': key, title }, h('dt', {}, term), h('dd', {}, value)),
+        h('div', { class: wide ? 'wide' : undefined, 'data-stat': key, title }, h('dt', {}, term), h('dd', { class: wide ? 'words' : undefined }, value)),
       ),
     );
     this.element.dataset.residue = String(stats.residue);

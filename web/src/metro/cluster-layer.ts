@@ -5,6 +5,7 @@ import type { Anchor, SvgMap } from '../map/svg-map';
 import { MapTooltip } from '../map/tooltip';
 import type { MapObstacles, MapSegment } from './metro-layers';
 import type { Pt } from './morph';
+import { httpUrl } from '../ui/url';
 
 export interface ClusterPick {
   cluster: PoiCluster;
@@ -24,17 +25,6 @@ const PREVIEW_RADIUS = 4;
 const NAME_MAX = 30;
 
 let clipIds = 0;
-
-/** Only web images: the data comes from imported files. */
-function httpUrl(value: string | undefined): string | undefined {
-  if (!value) return undefined;
-  try {
-    const url = new URL(value);
-    return url.protocol === 'http:' || url.protocol === 'https:' ? url.href : undefined;
-  } catch {
-    return undefined;
-  }
-}
 
 /**
  * Where a marker may stand instead of on its place: its place, then rings of 8 spots, upwards
@@ -303,6 +293,8 @@ export class ClusterLayer {
       const text = svg('text', { 'text-anchor': 'middle', dy: 4 });
       text.textContent = String(pick.cluster.size);
       badge.append(svg('circle', { r: 9 }), text);
+      // The label starts with the badge's number (WCAG 2.5.3, label in name).
+      element.setAttribute('aria-label', `${pick.cluster.size} places: ${pick.cluster.representative.name} and ${pick.cluster.size - 1} more`);
       element.append(badge);
     }
     marker.box = { x0: -THUMB_RADIUS, y0: THUMB_Y - THUMB_RADIUS - 6, x1: THUMB_RADIUS + 6, y1: 2 };
@@ -324,7 +316,14 @@ export class ClusterLayer {
     const name = svg('text', { class: 'cluster-name', x: HEAD_RADIUS + 4, y: HEAD_Y, dy: 4 });
     name.style.font = LABEL_FONT;
     const label = shorten(pick.cluster.representative.name);
-    name.textContent = label;
+    // A leading space (not drawn: SVG drops it) keeps count and name apart in the text a screen
+    // reader reads, and the aria-label starts with that text (WCAG 2.5.3, label in name).
+    name.textContent = size > 1 ? ` ${label}` : label;
+    const full = pick.cluster.representative.name;
+    element.setAttribute(
+      'aria-label',
+      size > 1 ? `${size} ${label}: ${full} and ${size - 1} more places` : label === full ? full : `${label} ${full}`,
+    );
     element.append(count, name);
     const width = labelWidth(label);
     marker.box = { x0: -HEAD_RADIUS, y0: HEAD_Y - HEAD_RADIUS, x1: HEAD_RADIUS, y1: 2 };

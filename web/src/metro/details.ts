@@ -3,12 +3,15 @@ import { formatDistance, nearest } from '../map/distance';
 import { h } from '../ui/dom';
 import { lineColor, sortLines, textColorOn } from './lines';
 import type { MetroPick } from './metro-layers';
+import { httpUrl } from '../ui/url';
 
 export interface DetailsContext {
   lines: Map<string, MetroLine>;
   stations: StationFeature[];
   pois: PoiFeature[];
   onPick(pick: MetroPick): void;
+  /** The "Walk from the nearest station" section of a POI (walk-layer.ts), or null. */
+  walk?(poi: PoiFeature): HTMLElement | null;
 }
 
 /** Walking distances for the "nearby" lists. */
@@ -17,17 +20,6 @@ const NEARBY_STATION_METERS = 1500;
 const NEARBY_LIMIT = 5;
 
 const position = (feature: StationFeature | PoiFeature): LonLat => feature.geometry.coordinates;
-
-/** Only web links: the data comes from imported files and must not smuggle in javascript: URLs. */
-function httpUrl(value: string | undefined): string | undefined {
-  if (!value) return undefined;
-  try {
-    const url = new URL(value);
-    return url.protocol === 'http:' || url.protocol === 'https:' ? url.href : undefined;
-  } catch {
-    return undefined;
-  }
-}
 
 function lineChips(lineIds: string[], lines: Map<string, MetroLine>): HTMLElement {
   const known = sortLines(lineIds.map((id) => lines.get(id)).filter((line): line is MetroLine => line !== undefined));
@@ -97,6 +89,7 @@ export function poiDetails(poi: PoiFeature, context: DetailsContext): Node[] {
     h('p', { class: 'details-kind' }, category),
     figure,
     links.length > 0 ? h('p', { class: 'poi-links' }, ...links) : null,
+    context.walk?.(poi) ?? null,
     nearbyList('Nearest stations', nearby, context),
   ].filter((node): node is HTMLElement => node !== null);
 }

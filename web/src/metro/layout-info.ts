@@ -13,6 +13,8 @@ const percent = (share: number) => `${(share * 100).toFixed(share >= 0.995 && sh
  */
 export class LayoutInfo {
   readonly element: HTMLDetailsElement;
+  /** A small note over the map while a layout computes (the numbers box sits in Advanced). */
+  readonly busy: HTMLElement;
   private readonly summary: HTMLElement;
   private readonly layout: HTMLElement;
   private readonly heat: HTMLElement;
@@ -22,13 +24,14 @@ export class LayoutInfo {
 
   constructor() {
     this.summary = h('summary', {}, 'Map');
+    this.busy = h('p', { class: 'map-busy', role: 'status', hidden: true });
     this.layout = h('div', { class: 'info-layout', 'data-testid': 'layout-info', hidden: true });
     this.heat = h('div', { class: 'info-heat', hidden: true });
     this.places = h('p', { class: 'info-places', 'data-testid': 'cluster-info', hidden: true });
     this.grid = h('p', { class: 'info-grid', hidden: true });
     this.element = h(
       'details',
-      { class: 'map-info', open: !window.matchMedia('(max-width: 640px)').matches, hidden: true },
+      { class: 'map-info', open: true, hidden: true },
       this.summary,
       this.layout,
       this.heat,
@@ -41,9 +44,13 @@ export class LayoutInfo {
   loading(cityName: string, note: string): void {
     this.stopTimer();
     const started = performance.now();
-    const elapsed = h('span', { class: 'elapsed' }, '');
+    const elapsed = h('span', { class: 'elapsed num' }, '');
+    const busyElapsed = h('span', { class: 'num' }, '');
+    this.busy.replaceChildren(h('span', { class: 'spinner', 'aria-hidden': 'true' }), 'Drawing the schematic map… ', busyElapsed);
+    this.busy.hidden = false;
     const tick = () => {
       elapsed.textContent = `${((performance.now() - started) / 1000).toFixed(1)} s`;
+      busyElapsed.textContent = elapsed.textContent;
     };
     tick();
     this.timer = window.setInterval(tick, 100);
@@ -137,10 +144,11 @@ export class LayoutInfo {
 
   private update(): void {
     this.element.hidden = this.layout.hidden && this.heat.hidden && this.grid.hidden && this.places.hidden;
-    this.summary.textContent = this.layout.hidden ? 'Map' : 'Octilinear layout';
+    this.summary.textContent = this.layout.hidden ? 'Map numbers' : 'Layout numbers';
   }
 
   private stopTimer(): void {
+    this.busy.hidden = true;
     window.clearInterval(this.timer);
     this.timer = 0;
   }

@@ -8,11 +8,10 @@ export interface LegendHandlers {
   onLabelsVisible(visible: boolean): void;
 }
 
-const COMPACT_WIDTH = '(max-width: 640px)';
 
 /**
  * The map key: one button per line (pressing one highlights that line) and switches for the
- * POI markers and station names. Starts folded on narrow screens, where it would cover the map.
+ * POI markers and station names. It sits in the controls panel (a bottom sheet on phones), not over the map.
  */
 export class Legend {
   readonly element: HTMLDetailsElement;
@@ -33,7 +32,7 @@ export class Legend {
     this.labelCheckbox.addEventListener('change', () => handlers.onLabelsVisible(this.labelCheckbox.checked));
     this.element = h(
       'details',
-      { class: 'legend', open: !window.matchMedia(COMPACT_WIDTH).matches, hidden: true, 'data-testid': 'legend' },
+      { class: 'legend', open: true, hidden: true, 'data-testid': 'legend' },
       this.summary,
       this.list,
       h('div', { class: 'legend-toggles' }, this.poiToggle, h('label', { class: 'legend-toggle' }, this.labelCheckbox, 'Station names')),

@@ -50,6 +50,8 @@ function segmented<T extends string>(
  */
 export class MapOptions {
   readonly element: HTMLElement;
+  /** The engineering switches (edge lengths, solver, warp grid), for the Advanced disclosure. */
+  readonly advanced: HTMLElement;
   readonly state: MapOptionsState = {
     mode: 'geographic',
     lengths: 'visual-worth',
@@ -72,11 +74,11 @@ export class MapOptions {
 
   constructor(handlers: MapOptionsHandlers) {
     this.mode = segmented<MapMode>(
-      'Map',
+      'Layout',
       'mode-switch',
       [
-        { value: 'geographic', text: 'Geographic', title: 'Stations and tracks where they are' },
-        { value: 'octilinear', text: 'Octilinear', title: 'The transit-centric tourist map: an octilinear layout, POIs warped with it' },
+        { value: 'geographic', text: 'Geographic', title: 'Stations and tracks where they really are' },
+        { value: 'octilinear', text: 'Schematic', title: 'A tidy metro diagram with the sights moved along with it (the octilinear layout)' },
       ],
       (mode) => {
         if (mode === this.state.mode) return;
@@ -87,7 +89,7 @@ export class MapOptions {
     this.lengths = h(
       'select',
       { id: 'layout-lengths', 'data-testid': 'layout-lengths', title: 'Edge lengths of the octilinear layout' },
-      h('option', { value: 'visual-worth' }, 'visual worth'),
+      h('option', { value: 'visual-worth' }, 'visual worth (more room near sights)'),
       h('option', { value: 'uniform' }, 'uniform'),
     );
     this.solver = h(
@@ -114,7 +116,12 @@ export class MapOptions {
       this.state.heat = this.heat.checked;
       handlers.onHeat(this.heat.checked);
     });
-    this.heatGroup = h('label', { class: 'option-inline check-inline' }, this.heat, 'Heat map');
+    this.heatGroup = h(
+      'label',
+      { class: 'option-inline check-inline', title: 'Where the sights worth seeing are (the visual worth heat map)' },
+      this.heat,
+      'Where the sights are',
+    );
     this.grid = h('input', { type: 'checkbox', 'data-testid': 'grid-toggle' });
     this.grid.addEventListener('change', () => {
       this.state.grid = this.grid.checked;
@@ -129,13 +136,13 @@ export class MapOptions {
       'label',
       { class: 'option-inline check-inline', title: 'The streets warped into the octilinear layout, drawn faintly under it when you zoom in' },
       this.roads,
-      'Streets',
+      'Streets under the diagram',
     );
     this.poiMode = segmented<PoiMode>(
-      'Places of interest',
+      'Sights',
       'poi-mode',
       [
-        { value: 'clusters', text: 'Clusters', title: 'The most prominent clusters of places in view' },
+        { value: 'clusters', text: 'Top picks', title: 'The best-known sights in view, grouped (clusters)' },
         { value: 'all', text: 'All', title: 'Every place of interest' },
       ],
       (mode) => {
@@ -144,18 +151,22 @@ export class MapOptions {
         handlers.onPoiMode(mode);
       },
     );
-    this.poiGroup = h('div', { class: 'option-inline' }, h('span', { class: 'field' }, 'Places'), this.poiMode.element);
+    this.poiGroup = h('div', { class: 'option-row' }, h('span', { class: 'field', 'aria-hidden': 'true' }, 'Sights'), this.poiMode.element);
 
     this.element = h(
       'div',
       { class: 'map-options', 'data-testid': 'map-options' },
-      h('div', { class: 'option-inline' }, this.mode.element),
-      h('label', { class: 'option-inline', for: 'layout-lengths' }, h('span', { class: 'field' }, 'Lengths'), this.lengths),
-      h('label', { class: 'option-inline', for: 'layout-solver' }, h('span', { class: 'field' }, 'Solver'), this.solver),
-      this.heatGroup,
-      h('label', { class: 'option-inline check-inline', title: 'The mesh that shows how the layout moved space around' }, this.grid, 'Warp grid'),
-      this.roadsGroup,
+      h('div', { class: 'option-row' }, h('span', { class: 'field', 'aria-hidden': 'true' }, 'Layout'), this.mode.element),
       this.poiGroup,
+      this.heatGroup,
+      this.roadsGroup,
+    );
+    this.advanced = h(
+      'div',
+      { class: 'map-options map-options-advanced' },
+      h('label', { class: 'option-row', for: 'layout-lengths' }, h('span', { class: 'field' }, 'Lengths'), this.lengths),
+      h('label', { class: 'option-row', for: 'layout-solver' }, h('span', { class: 'field' }, 'Solver'), this.solver),
+      h('label', { class: 'option-inline check-inline', title: 'The mesh that shows how the layout moved space around' }, this.grid, 'Warp grid'),
     );
     this.setMode('geographic');
     this.poiMode.set(this.state.pois);

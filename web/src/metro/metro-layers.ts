@@ -166,8 +166,10 @@ export class MetroLayers {
     connectors.append(this.connectorOutline, this.connectorInner);
     this.stationGroups = groupsAtOnePlace(stationFeatures);
     this.poiLayer = map.addLayer('pois', 'screen');
-    const stationLayer = map.addLayer('stations', 'screen');
+    // Stations above POI pins and cluster markers: a tap on a station's symbol always picks the
+    // station (markers are placed off the symbols, but their leaders and dots may cross them).
     this.clusterLayer = map.addLayer('clusters', 'screen');
+    const stationLayer = map.addLayer('stations', 'screen');
     this.labelLayer = map.addLayer('labels', 'screen');
     for (const feature of pois) this.drawPoi(feature, frame);
     for (const feature of stationFeatures) this.drawStation(stationLayer, feature, frame, lines);

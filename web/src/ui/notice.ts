@@ -1,4 +1,4 @@
-import { describeError } from './status';
+import { describeError, detailsSection } from './status';
 import { h } from './dom';
 
 /**
@@ -23,7 +23,7 @@ export class MapNotice {
       this.clear();
       retry!();
     });
-    this.element.replaceChildren(h('strong', {}, title), close, h('p', {}, describeError(error)), ...(retryButton ? [retryButton] : []));
+    this.element.replaceChildren(h('strong', {}, title), close, h('p', {}, describeError(error)), ...[detailsSection(error), retryButton].filter((e) => e !== null));
     this.element.dataset.key = key;
     this.element.hidden = false;
   }

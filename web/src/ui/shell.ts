@@ -31,7 +31,7 @@ export class Shell {
     this.connection = h('span', { class: 'connection', 'data-state': 'connecting', role: 'status' });
     this.main = h('main', { class: 'app-main' });
     root.replaceChildren(
-      h('header', { class: 'app-header' }, h('a', { class: 'brand', href: '#/metro' }, logo, h('span', {}, 'tourmap')), nav, this.connection),
+      h('header', { class: 'app-header' }, h('a', { class: 'brand', href: '#/metro', 'aria-label': 'tourmap: home' }, logo, h('span', {}, 'tourmap')), nav, this.connection),
       this.main,
     );
     this.setConnection('connecting');

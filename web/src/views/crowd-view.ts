@@ -4,12 +4,14 @@ import { ControlsPanel } from '../crowd/controls-panel';
 import { showModelCredits } from '../crowd/credits';
 import { formatCount } from '../crowd/format';
 import { FrameDecoder, type DecodedFrame } from '../crowd/frame-decoder';
+import { HeatLegend } from '../crowd/heat-legend';
 import { OrbitCamera } from '../crowd/orbit-camera';
 import { ProgressBox } from '../crowd/progress-box';
 import { StatsOverlay } from '../crowd/stats-overlay';
 import { StreamCanvas } from '../crowd/stream-canvas';
 import { CLOSE_POLICY, CrowdStream, type StreamClose, type StreamState } from '../crowd/stream-client';
 import { h } from '../ui/dom';
+import { ControlSheet } from '../ui/sheet';
 import { MapNotice } from '../ui/notice';
 import { StatusOverlay } from '../ui/status';
 import type { View } from './view';
@@ -35,6 +37,7 @@ export class CrowdView implements View {
   private readonly canvas = new StreamCanvas(HELP_ID);
   private readonly stats = new StatsOverlay();
   private readonly progress = new ProgressBox();
+  private readonly heatLegend = new HeatLegend();
   private readonly notice = new MapNotice();
   private readonly status = new StatusOverlay();
   private readonly credits = h('div', { class: 'attribution', 'aria-label': 'Model credits', hidden: true });
@@ -58,6 +61,7 @@ export class CrowdView implements View {
     this.controls = new ControlsPanel(() => {
       // A change answers the server's complaint about the last one.
       this.notice.clear('server');
+      this.heatLegend.shown = this.controls.value.heatmap;
       this.sendView();
     });
     this.camera = new OrbitCamera(this.canvas.element, () => this.sendView());
@@ -77,23 +81,29 @@ export class CrowdView implements View {
       { class: 'map-area crowd-stage' },
       this.canvas.element,
       this.stats.element,
+      this.heatLegend.element,
       this.progress.element,
       this.notice.element,
       this.credits,
       this.status.element,
     );
-    this.element = h(
-      'section',
-      { class: 'view view-crowd' },
-      h(
-        'div',
-        { class: 'view-side crowd-side' },
+    // The switches: a side panel on desktop, a bottom sheet on phones (see ControlSheet).
+    const sheet = new ControlSheet(
+      'crowd',
+      'Crowd options',
+      {
+        title: 'A crowd drawn live',
+        text: 'A busy place full of walking people, drawn by the server and streamed to you like a video. People far away are drawn with less detail, so big crowds stay smooth.',
+        tryThis: 'drag the picture to walk around the crowd, and pinch (or scroll) to come closer.',
+      },
+      'crowd-side',
+      [
         h('div', { class: 'field-row' }, h('label', { class: 'field', for: 'crowd-scene' }, 'Scene'), this.picker),
         this.summary,
         this.controls.element,
         h(
           'details',
-          { class: 'options crowd-help', open: true },
+          { class: 'options crowd-help' },
           h('summary', {}, 'Camera'),
           h(
             'ul',
@@ -103,9 +113,9 @@ export class CrowdView implements View {
             h('li', {}, 'With the picture focused: W A S D or the arrow keys walk, Q / E go down and up, + / − zoom, Home goes back to the start.'),
           ),
         ),
-      ),
-      this.stage,
+      ],
     );
+    this.element = h('section', { class: 'view view-crowd has-sheet' }, sheet.element, this.stage);
 
     new ResizeObserver((entries) => {
       const box = entries[entries.length - 1]!.contentRect;
@@ -190,7 +200,7 @@ export class CrowdView implements View {
     this.canvas.clear();
     this.canvas.element.dataset.scene = scene.id;
     this.canvas.label = `${scene.title}: a crowd rendered by the server`;
-    this.camera.reset(scene.default_camera, scene.bounds);
+    this.camera.reset(scene.default_camera, scene.bounds, scene.occluder_boxes ?? []);
     this.controls.setScene(scene);
     this.stats.clear();
     this.stats.setFullTriangles(scene.triangles);
@@ -304,10 +314,8 @@ export class CrowdView implements View {
     }
     this.canvas.status = 'retrying';
     const reason = close?.reason ? `: “${close.reason}”` : '';
-    const why =
-      close?.code === CLOSE_POLICY
-        ? `The server closed the stream (policy${reason}).`
-        : `The connection to the renderer was lost (code ${close?.code ?? '?'}${reason}).`;
+    console.info(`crowd: stream closed (code ${close?.code ?? '?'}${reason})`);
+    const why = close?.code === CLOSE_POLICY ? 'The server stopped the stream: too many changes at once.' : 'The connection to the renderer was lost.';
     this.notice.error('connection', 'Stream interrupted', new Error(`${why} Reconnecting in ${when}.`), retry);
   }
 

@@ -17,12 +17,13 @@ import { RoadCanvas } from '../roads/road-canvas';
 import { RoadGraph } from '../roads/road-graph';
 import { attributionBox, showAttribution } from '../ui/attribution';
 import { h } from '../ui/dom';
+import { ControlSheet } from '../ui/sheet';
 import { StatusOverlay } from '../ui/status';
 import type { View } from './view';
 
 const MODES: { kind: DeformKind; label: string }[] = [
-  { kind: 'focus', label: 'Focus' },
-  { kind: 'mental', label: 'Mental map' },
+  { kind: 'focus', label: 'Enlarge' },
+  { kind: 'mental', label: 'Reshape' },
   { kind: 'destination', label: 'Destination' },
 ];
 
@@ -144,7 +145,7 @@ export class DeformView implements View {
       },
     });
 
-    const modeSwitch = h('div', { class: 'mode-switch', role: 'group', 'aria-label': 'Deformation' });
+    const modeSwitch = h('div', { class: 'mode-switch', role: 'group', 'aria-label': 'What to do with the map' });
     for (const { kind, label } of MODES) {
       const button = h('button', { type: 'button', class: 'mode-button', 'data-mode': kind, 'data-testid': `mode-${kind}` }, label);
       button.addEventListener('click', () => this.setMode(kind));
@@ -153,17 +154,29 @@ export class DeformView implements View {
     }
     this.toolSlot = h('div', { class: 'tool-slot' });
 
-    this.element = h(
-      'section',
-      { class: 'view view-deform' },
-      h(
-        'div',
-        { class: 'view-side deform-side' },
-        h('div', { class: 'field-row' }, h('label', { class: 'field', for: 'road-picker' }, 'Road network'), this.picker),
+    // The switches: a side panel on desktop, a bottom sheet on phones (see ControlSheet).
+    const sheet = new ControlSheet(
+      'deform',
+      'Map options',
+      {
+        title: 'Stretch the streets that matter',
+        text: 'This map of a town can be bent: the streets around the places you care about grow larger while the rest of the map makes room, so the whole town still fits on the screen.',
+        tryThis: 'tap a spot on the map: the streets around it are drawn bigger. Drag its centre to move it.',
+      },
+      'deform-side',
+      [
+        h('div', { class: 'field-row' }, h('label', { class: 'field', for: 'road-picker' }, 'Town'), this.picker),
         modeSwitch,
         this.toolSlot,
         this.options.element,
-      ),
+      ],
+    );
+    this.map.element.setAttribute('role', 'region');
+    this.map.element.setAttribute('aria-label', 'Street map: tap to enlarge a place, drag to pan, pinch or use + and − to zoom');
+    this.element = h(
+      'section',
+      { class: 'view view-deform has-sheet' },
+      sheet.element,
       h(
         'div',
         { class: 'map-area' },
@@ -447,7 +460,7 @@ export class DeformView implements View {
     this.errors++;
     this.canvas.element.dataset.errors = String(this.errors);
     const field = error instanceof ApiError ? error.field : undefined;
-    const title = error instanceof ApiError && error.status > 0 ? `The server could not deform the map (HTTP ${error.status})` : 'The map could not be deformed';
+    const title = error instanceof ApiError && error.status > 0 ? 'The server could not deform the map' : 'The map could not be deformed';
     this.fillErrorBox('error', title, error instanceof Error ? error.message : String(error), field);
   }
 

@@ -24,6 +24,7 @@ import type {
   VisualWorthRaster,
   XY,
 } from '../api/types';
+import { cityCategories, type InterestParams } from '../api/interests';
 import { mapControls } from '../map/controls';
 import { extendBBox } from '../map/bbox';
 import { frameFor, type Frame } from '../map/projection';
@@ -32,6 +33,8 @@ import { ClusterLayer, type ClusterPick } from '../metro/cluster-layer';
 import { poiDetails, stationDetails, type DetailsContext } from '../metro/details';
 import { exportButton } from '../metro/export-button';
 import { HeatLayer } from '../metro/heat-layer';
+import { InterestsPanel } from '../metro/interests-panel';
+import { WalkControl } from '../metro/walk-layer';
 import { LatestRequest } from '../metro/latest-request';
 import { geoGrid, layoutGeometry, Placement, serverLabels } from '../metro/layout-geometry';
 import { LayoutInfo } from '../metro/layout-info';
@@ -44,6 +47,7 @@ import { attributionBox, showAttribution } from '../ui/attribution';
 import { DetailsPanel } from '../ui/details-panel';
 import { h } from '../ui/dom';
 import { MapNotice } from '../ui/notice';
+import { ControlSheet } from '../ui/sheet';
 import { StatusOverlay } from '../ui/status';
 import type { View } from './view';
 
@@ -61,7 +65,7 @@ const HEAT_MARGIN = 0.15;
 const CLUSTER_ZOOM = 2.5;
 
 /** The layouts of a city by parameters: what the client asks for (see layoutFor). */
-const layoutKey = (cityId: string, params: LayoutParams) => `${cityId}|${params.lengths}|${params.solver}`;
+const layoutKey = (cityId: string, params: InterestParams) => `${cityId}|${params.lengths}|${params.solver}|${params.interests ?? ''}`;
 
 const plural = (n: number, word: string) => `${n.toLocaleString()} ${word}${n === 1 ? '' : 's'}`;
 const lerp = (a: number, b: number, t: number) => a + (b - a) * t;
@@ -107,7 +111,12 @@ export class MetroView implements View {
   private readonly map: SvgMap;
   private readonly legend: Legend;
   private readonly details: DetailsPanel;
+  /** "Your interests" (issue 17): their `interests` parameter goes with every layout, cluster and heat map request. */
+  private readonly interests: InterestsPanel;
+  /** "Walk from the nearest station" in a POI's details, and the walk over the map. */
+  private readonly walk: WalkControl;
   private readonly options: MapOptions;
+  private readonly sheet: ControlSheet;
   private readonly info = new LayoutInfo();
   private readonly notice = new MapNotice();
   private readonly status = new StatusOverlay();
@@ -175,27 +184,53 @@ export class MetroView implements View {
       onPoiMode: () => this.applyPoiMode(),
     });
     this.details = new DetailsPanel(() => this.pick(null));
+    this.interests = new InterestsPanel(() => this.interestsChanged());
+    this.walk = new WalkControl(this.map, () => ({
+      mode: this.morphing ? null : this.drawnMode,
+      frame: this.frame,
+      placement: this.drawnMode === 'octilinear' ? this.shownLayout?.placement : undefined,
+      geometry: this.layers?.geometry,
+    }));
     this.map.setFitInsets(() => this.overlayInsets());
     this.map.onSettle(() => this.scheduleRefresh());
 
-    this.element = h(
-      'section',
-      { class: 'view view-metro' },
-      h(
-        'div',
-        { class: 'toolbar' },
-        h('label', { class: 'field', for: 'city-picker' }, 'City'),
-        this.picker,
+    // The switches: a side panel on desktop, a bottom sheet on phones; the engineering ones
+    // and the layout's numbers folded into Advanced.
+    this.sheet = new ControlSheet(
+      'metro',
+      'Map options',
+      {
+        title: 'Metro map for sightseeing',
+        text: 'See a city’s metro lines together with its sights. Tap a station or a pin for details; pinch or use + and − to zoom.',
+        tryThis: 'switch Layout to “Schematic”: the map turns into a tidy metro diagram and the sights move along with it.',
+      },
+      'metro-side',
+      [
+        h('div', { class: 'field-row' }, h('label', { class: 'field', for: 'city-picker' }, 'City'), this.picker),
         this.summary,
         this.options.element,
+        this.interests.element,
+        this.legend.element,
         exportButton(() => (this.city ? { cityId: this.city.id, params: this.layoutParams() } : null)),
-      ),
+        h(
+          'details',
+          { class: 'advanced', 'data-testid': 'metro-advanced' },
+          h('summary', {}, 'Advanced'),
+          h('div', { class: 'advanced-body' }, this.options.advanced, this.info.element),
+        ),
+      ],
+    );
+    this.map.element.setAttribute('role', 'region');
+    this.map.element.setAttribute('aria-label', 'Metro map: drag to pan, pinch or use + and − to zoom');
+    this.element = h(
+      'section',
+      { class: 'view view-metro has-sheet' },
+      this.sheet.element,
       h(
         'div',
         { class: 'map-area' },
         this.map.element,
-        // Legend above, info box below: a column, so neither covers the other.
-        h('div', { class: 'map-side' }, this.legend.element, this.info.element),
+        this.info.busy,
         this.details.element,
         mapControls(this.map),
         this.attribution,
@@ -277,6 +312,7 @@ export class MetroView implements View {
       this.clearMap();
       // Legend and attribution first: fitting the map keeps clear of them.
       this.legend.show(metro.lines, pois.features.length, city.poi_categories);
+      this.interests.show(summary.id, cityCategories(city));
       this.baseAttribution = [...city.attribution, ...metro.attribution, ...pois.attribution];
       showAttribution(this.attribution, this.baseAttribution);
       const frame = frameFor(extendBBox(city.bbox, pois.features.map((poi) => poi.geometry.coordinates)));
@@ -287,6 +323,7 @@ export class MetroView implements View {
       this.layers = new MetroLayers(this.map, frame, metro, pois.features, (pick) => this.pick(pick));
       this.heat = new HeatLayer(this.layers.heatLayer);
       this.roads = new RoadsLayer(this.map, this.layers.roadLayer, (drawn) => this.creditRoads(drawn));
+      this.walk.setCity(summary.id, city.road_network !== null);
       // Only a city with a road network has streets to ask for (no 404 to log otherwise).
       this.hasRoads = city.road_network ? undefined : false;
       this.options.setHasRoads(city.road_network !== null);
@@ -307,6 +344,7 @@ export class MetroView implements View {
         stations: metro.features.filter((f): f is StationFeature => f.properties.kind === 'station'),
         pois: pois.features,
         onPick: (pick) => this.pick(pick, true),
+        walk: (poi) => this.walk.panel(poi),
       };
       this.applyPoiMode();
       this.summary.textContent = [
@@ -370,6 +408,8 @@ export class MetroView implements View {
     this.city = undefined;
     this.context = undefined;
     this.details.hide();
+    this.walk.setCity(undefined, false);
+    this.interests.hide();
     this.legend.hide();
     this.info.hideLayout();
     this.info.setHeat(null);
@@ -386,17 +426,23 @@ export class MetroView implements View {
     data.transition = 'idle';
   }
 
-  /** The open legend covers the map's left side, the attribution its foot: fit the network beside them. */
+  /** The attribution covers the map's foot: fit the network above it. */
   private overlayInsets(): Insets {
-    const legend = this.legend.element;
-    const left = legend.open && !legend.hidden ? legend.getBoundingClientRect().right - this.map.element.getBoundingClientRect().left : 0;
-    return { top: 0, right: 0, bottom: this.attribution.offsetHeight, left };
+    return { top: 0, right: 0, bottom: this.attribution.offsetHeight, left: 0 };
   }
 
   // ---- Geographic <-> octilinear ----
 
-  private layoutParams(): LayoutParams {
-    return { lengths: this.options.state.lengths, solver: this.options.state.solver };
+  private layoutParams(): InterestParams {
+    const interests = this.interests.query;
+    return { lengths: this.options.state.lengths, solver: this.options.state.solver, ...(interests ? { interests } : {}) };
+  }
+
+  /** New interests: the schematic morphs to their layout; clusters and heat map follow them. */
+  private interestsChanged(): void {
+    if (!this.city) return;
+    if (this.options.state.mode === 'octilinear') void this.showOctilinear();
+    else this.scheduleRefresh(0);
   }
 
   /** The layout for the parameters, asked for once per city and parameters (a failure is forgotten). */
@@ -582,6 +628,7 @@ export class MetroView implements View {
     const duration = reducedMotion() ? 0 : MORPH_MS;
     const data = this.map.element.dataset;
     this.morphing = true;
+    this.walk.redraw(); // hidden while the map moves
     data.transition = 'running';
     data.morphTo = mode;
     const started = performance.now();
@@ -609,6 +656,7 @@ export class MetroView implements View {
       this.drawnMode = mode;
       data.mode = mode;
       data.transition = 'idle';
+      this.walk.redraw();
       this.describeGrid();
       this.updateRoads();
       this.map.settle();
@@ -748,7 +796,7 @@ export class MetroView implements View {
       bbox = this.windowLonLat()!;
       toFrame = (position) => frame.project(position);
     }
-    const query = { space, bbox, m: CLUSTER_M, layout: layout?.params };
+    const query = { space, bbox, m: CLUSTER_M, layout: layout?.params, interests: this.interests.query };
     data.status = 'loading';
     const started = performance.now();
     this.clusterRequest.run(
@@ -815,7 +863,7 @@ export class MetroView implements View {
     const cells = (pixels: number) => Math.max(1, Math.round((1 + 2 * HEAT_MARGIN) * pixels * scale));
     this.info.setHeat('Visual worth of the places of interest (eq. 5.1), for the window shown.');
     this.heatRequest.run(
-      (signal) => fetchVisualWorth(city.id, bbox, cells(width), cells(height), signal),
+      (signal) => fetchVisualWorth(city.id, bbox, cells(width), cells(height), signal, this.interests.query),
       (raster) => {
         heat.showRaster(raster, frame);
         this.heatShown = 'window';
@@ -836,13 +884,14 @@ export class MetroView implements View {
     const scale = HEAT_MAX_SIDE / Math.max(x1 - x0, y1 - y0);
     const width = Math.max(1, Math.round((x1 - x0) * scale));
     const height = Math.max(1, Math.round((y1 - y0) * scale));
-    return fetchVisualWorth(city.id, bbox, width, height);
+    return fetchVisualWorth(city.id, bbox, width, height, undefined, (layout.params as InterestParams).interests);
   }
 
   // ---- Picks ----
 
   /** A cluster marker: its representative's details, and a zoom into the cluster. */
   private pickCluster(pick: ClusterPick): void {
+    this.walk.clear();
     const context = this.context;
     if (!context) return;
     const { cluster } = pick;
@@ -861,6 +910,7 @@ export class MetroView implements View {
 
   /** Shows a picked station or POI; `reveal` also moves the map to it (picked from a list). */
   private pick(pick: MetroPick | null, reveal = false): void {
+    this.walk.clear();
     this.layers?.select(pick);
     if (!pick || !this.context) {
       this.details.hide();
