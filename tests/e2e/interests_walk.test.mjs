@@ -238,7 +238,8 @@ async function checkSize(state, baseUrl, size, screenshots) {
   await page.waitForTimeout(600);
   await page.click('[data-testid=walk-button]');
   const schematic = await checkWalkDrawn(page, 'octilinear', answer, `${label} schematic`);
-  const text = await page.locator('[data-testid=walk-result]').innerText();
+  // Numbers and their units are joined by no-break spaces (they must not wrap apart).
+  const text = (await page.locator('[data-testid=walk-result]').innerText()).replace(/\u00a0/g, ' ');
   const first = answer.walks[0];
   const minutes = `${Math.max(1, Math.round(first.minutes))} min walk`;
   check(text.includes(first.station.name) && text.includes(minutes), `${label}: the walk reads "${text}", not ${first.station.name} · ${minutes}`);

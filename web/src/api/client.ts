@@ -266,6 +266,40 @@ export function layoutQuery(params: LayoutParams & { interests?: string }): stri
   return `lengths=${segment(params.lengths)}&solver=${segment(params.solver)}${interests}`;
 }
 
+export type SchematicRoadClass = 'major' | 'medium' | 'minor';
+
+/** GET /cities/{id}/layout/roads: the road map warped into the layout (api/openapi.yaml). */
+export interface LayoutRoadsResponse {
+  city: string;
+  version: number;
+  road_network: { id: string; name: string; version: number };
+  frame: 'layout';
+  /** Per class, polylines as flat [x, y, x, y, ...] in the layout's frame (the stations' coordinates). */
+  roads: Record<SchematicRoadClass, number[][]>;
+  stats: {
+    roads: number;
+    road_edges: number;
+    guides: number;
+    stations: number;
+    max_guide_error: number;
+    timing_ms: { total: number; solve: number };
+  };
+  attribution: string[];
+}
+
+/**
+ * The streets under the layout drawn for `params`, or null when the city has no road network
+ * (404): the view then offers no streets. Other failures throw (ApiError); busy answers are retried.
+ */
+export async function fetchLayoutRoads(id: string, params: LayoutParams & { interests?: string }, signal?: AbortSignal): Promise<LayoutRoadsResponse | null> {
+  try {
+    return await getJson<LayoutRoadsResponse>(`/cities/${segment(id)}/layout/roads?${layoutQuery(params)}`, signal);
+  } catch (error) {
+    if (error instanceof ApiError && error.status === 404) return null;
+    throw error;
+  }
+}
+
 export interface LayoutAnswer {
   layout: LayoutResponse;
   /** X-Result-Cache: the server had the layout already (hit) or computed it (miss). */

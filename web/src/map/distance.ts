@@ -12,7 +12,8 @@ export function distanceMeters([lon1, lat1]: LonLat, [lon2, lat2]: LonLat): numb
 }
 
 export function formatDistance(meters: number): string {
-  return meters < 1000 ? `${Math.round(meters / 10) * 10} m` : `${(meters / 1000).toFixed(1)} km`;
+  // A no-break space: a narrow panel must not put the unit on a line of its own.
+  return meters < 1000 ? `${Math.round(meters / 10) * 10}\u00a0m` : `${(meters / 1000).toFixed(1)}\u00a0km`;
 }
 
 /** The `limit` nearest items within `maxMeters`, nearest first. */

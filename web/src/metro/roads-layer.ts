@@ -1,61 +1,11 @@
-import { ApiError, isAbort, layoutQuery } from '../api/client';
-import type { LayoutParams } from '../api/types';
+import type { LayoutRoadsResponse, SchematicRoadClass } from '../api/client';
 import { polylinePath, svg } from '../map/svg';
 import type { SvgMap } from '../map/svg-map';
 import type { Placement } from './layout-geometry';
 
 /** Road classes of GET /cities/{id}/layout/roads, from the most to the least important. */
-export const SCHEMATIC_ROAD_CLASSES = ['major', 'medium', 'minor'] as const;
-export type SchematicRoadClass = (typeof SCHEMATIC_ROAD_CLASSES)[number];
-
-/** GET /cities/{id}/layout/roads: the road map warped into the layout (api/openapi.yaml). */
-export interface LayoutRoadsResponse {
-  city: string;
-  version: number;
-  road_network: { id: string; name: string; version: number };
-  frame: 'layout';
-  /** Per class, polylines as flat [x, y, x, y, ...] in the layout's frame (the stations' coordinates). */
-  roads: Record<SchematicRoadClass, number[][]>;
-  stats: {
-    roads: number;
-    road_edges: number;
-    guides: number;
-    stations: number;
-    max_guide_error: number;
-    timing_ms: { total: number; solve: number };
-  };
-  attribution: string[];
-}
-
-/**
- * The roads under the layout drawn for `params`, or null when the city has no road network
- * (404): the view then offers no streets. Other failures throw (ApiError).
- */
-export async function fetchLayoutRoads(cityId: string, params: LayoutParams, signal?: AbortSignal): Promise<LayoutRoadsResponse | null> {
-  let response: Response;
-  try {
-    response = await fetch(`/api/v1/cities/${encodeURIComponent(cityId)}/layout/roads?${layoutQuery(params)}`, {
-      signal,
-      cache: 'no-cache',
-      headers: { Accept: 'application/json' },
-    });
-  } catch (error) {
-    if (isAbort(error)) throw error;
-    throw new ApiError(0, 'network', 'The tourmap server cannot be reached.');
-  }
-  if (response.status === 404) return null;
-  if (!response.ok) {
-    let message = `${response.status} ${response.statusText || 'error'}`;
-    try {
-      const body = (await response.json()) as { error?: { message?: string; code?: string } };
-      if (body.error?.message) message = body.error.message;
-    } catch {
-      // not the API's error envelope: the status line says enough
-    }
-    throw new ApiError(response.status, 'http_error', message);
-  }
-  return (await response.json()) as LayoutRoadsResponse;
-}
+export const SCHEMATIC_ROAD_CLASSES = ['major', 'medium', 'minor'] as const satisfies readonly SchematicRoadClass[];
+export type { LayoutRoadsResponse, SchematicRoadClass };
 
 /**
  * Screen pixels per layout metre from which each class is drawn: the streets are context for a

@@ -28,7 +28,7 @@ const FOCUS_MAX_ZOOM = 8;
 
 /** "7 min walk (550 m)". */
 export function walkText(walk: StationWalk): string {
-  return `${Math.max(1, Math.round(walk.minutes))} min walk (${formatDistance(walk.distance_m)})`;
+  return `${Math.max(1, Math.round(walk.minutes))}\u00a0min walk (${formatDistance(walk.distance_m)})`;
 }
 
 /**

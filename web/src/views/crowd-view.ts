@@ -14,6 +14,7 @@ import { h } from '../ui/dom';
 import { ControlSheet } from '../ui/sheet';
 import { MapNotice } from '../ui/notice';
 import { StatusOverlay } from '../ui/status';
+import { WantedPicker } from '../ui/wanted-picker';
 import type { View } from './view';
 
 const HELP_ID = 'crowd-camera-help';
@@ -31,7 +32,7 @@ const seconds = (ms: number) => `${Math.max(1, Math.round(ms / 1000))} s`;
  */
 export class CrowdView implements View {
   readonly element: HTMLElement;
-  private readonly picker: HTMLSelectElement;
+  private readonly picker: WantedPicker<CrowdScene>;
   private readonly summary: HTMLElement;
   private readonly stage: HTMLElement;
   private readonly canvas = new StreamCanvas(HELP_ID);
@@ -46,7 +47,6 @@ export class CrowdView implements View {
   private readonly stream: CrowdStream;
   private readonly decoder: FrameDecoder;
   private catalog?: CrowdScenesResponse;
-  private wanted?: string;
   private scene?: CrowdScene;
   /** The scene's first frame is not drawn yet (the progress box stays until it is). */
   private awaitingFirst = true;
@@ -55,8 +55,14 @@ export class CrowdView implements View {
   private stageSize = { width: 0, height: 0 };
 
   constructor(private readonly go: (sceneId: string, replace: boolean) => void) {
-    this.picker = h('select', { id: 'crowd-scene', 'data-testid': 'crowd-scene', disabled: true });
-    this.picker.addEventListener('change', () => this.go(this.picker.value, false));
+    this.picker = new WantedPicker<CrowdScene>({
+      id: 'crowd-scene',
+      label: (scene) => `${scene.title} — ${scene.characters.toLocaleString('en')} ${scene.id === 'stampede' ? 'animals' : 'people'}`,
+      go: (id, replace) => this.go(id, replace),
+      open: (scene) => this.openWanted(scene),
+      missing: (id) => this.fail(`There is no crowd scene “${id}”`, 'Pick one of the scenes in the list.'),
+      empty: () => this.fail('No crowd scenes', 'The server offers no crowd scenes.'),
+    });
     this.summary = h('p', { class: 'crowd-summary', 'aria-live': 'polite' });
     this.controls = new ControlsPanel(() => {
       // A change answers the server's complaint about the last one.
@@ -98,7 +104,7 @@ export class CrowdView implements View {
       },
       'crowd-side',
       [
-        h('div', { class: 'field-row' }, h('label', { class: 'field', for: 'crowd-scene' }, 'Scene'), this.picker),
+        h('div', { class: 'field-row' }, h('label', { class: 'field', for: 'crowd-scene' }, 'Scene'), this.picker.element),
         this.summary,
         this.controls.element,
         h(
@@ -128,9 +134,8 @@ export class CrowdView implements View {
   }
 
   show(sceneId: string | undefined): void {
-    this.wanted = sceneId;
     this.shown = true;
-    if (this.catalog) this.openWanted();
+    this.picker.want(sceneId);
   }
 
   hide(): void {
@@ -155,26 +160,11 @@ export class CrowdView implements View {
     const { scenes, modes, limits } = this.catalog;
     this.controls.configure(modes, limits);
     this.stream.setMaxRate(limits.max_fps, limits.max_messages_per_s);
-    this.picker.replaceChildren(
-      ...scenes.map((scene) => h('option', { value: scene.id }, `${scene.title} — ${scene.characters.toLocaleString('en')} ${scene.id === 'stampede' ? 'animals' : 'people'}`)),
-    );
-    this.picker.disabled = scenes.length === 0;
-    if (this.shown) this.openWanted();
+    this.picker.setItems(scenes, this.shown);
   }
 
-  private openWanted(): void {
-    const scenes = this.catalog?.scenes ?? [];
-    if (!this.wanted) {
-      if (scenes[0]) this.go(scenes[0].id, true);
-      else this.fail('No crowd scenes', 'The server offers no crowd scenes.');
-      return;
-    }
-    const scene = scenes.find((candidate) => candidate.id === this.wanted);
-    if (!scene) {
-      this.fail(`There is no crowd scene “${this.wanted}”`, 'Pick one of the scenes in the list.');
-      return;
-    }
-    this.picker.value = scene.id;
+  /** The route's scene, from the list (WantedPicker). */
+  private openWanted(scene: CrowdScene): void {
     document.title = `${scene.title} · Crowd · tourmap`;
     if (this.scene?.id !== scene.id) this.openScene(scene);
     this.syncStream();

@@ -19,6 +19,7 @@ import { attributionBox, showAttribution } from '../ui/attribution';
 import { h } from '../ui/dom';
 import { ControlSheet } from '../ui/sheet';
 import { StatusOverlay } from '../ui/status';
+import { WantedPicker } from '../ui/wanted-picker';
 import type { View } from './view';
 
 const MODES: { kind: DeformKind; label: string }[] = [
@@ -88,7 +89,7 @@ function median(values: number[]): number {
  */
 export class DeformView implements View {
   readonly element: HTMLElement;
-  private readonly picker: HTMLSelectElement;
+  private readonly picker: WantedPicker<RoadNetworkSummary>;
   private readonly map = new SvgMap('Road network', { doubleClickZoom: false });
   private readonly canvas = new RoadCanvas();
   private readonly overlay: SVGGElement;
@@ -106,8 +107,6 @@ export class DeformView implements View {
   };
   private tool: DeformTool = this.tools.focus;
   private readonly loop: LatestWins<Wanted, DeformResponse>;
-  private networks?: RoadNetworkSummary[];
-  private wanted?: string;
   private drawn?: string;
   private load?: AbortController;
   private network?: Network;
@@ -124,8 +123,22 @@ export class DeformView implements View {
   private meter?: { started: number; frames: number[]; updates: number[]; roundTrips: number[]; timer: number };
 
   constructor(private readonly go: (networkId: string, replace: boolean) => void) {
-    this.picker = h('select', { id: 'road-picker', 'data-testid': 'road-picker', disabled: true });
-    this.picker.addEventListener('change', () => this.go(this.picker.value, false));
+    this.picker = new WantedPicker<RoadNetworkSummary>({
+      id: 'road-picker',
+      label: (network) => `${network.name} — ${network.counts.edges.toLocaleString()} road segments`,
+      go: (id, replace) => this.go(id, replace),
+      open: (network) => {
+        if (this.drawn !== network.id) void this.loadNetwork(network);
+      },
+      missing: (id) => {
+        this.load?.abort();
+        this.drawn = undefined;
+        this.closeNetwork();
+        this.setCanvasStatus('error');
+        this.status.error(`There is no road network “${id}”`, new Error('Pick one of the networks in the list.'));
+      },
+      empty: () => this.status.error('No road networks yet', new Error('Import one with `tourmap import roads` and it will appear here.')),
+    });
     this.map.element.dataset.testid = 'road-map';
     this.map.element.prepend(this.canvas.element);
     this.canvas.element.dataset.testid = 'road-canvas';
@@ -165,7 +178,7 @@ export class DeformView implements View {
       },
       'deform-side',
       [
-        h('div', { class: 'field-row' }, h('label', { class: 'field', for: 'road-picker' }, 'Town'), this.picker),
+        h('div', { class: 'field-row' }, h('label', { class: 'field', for: 'road-picker' }, 'Town'), this.picker.element),
         modeSwitch,
         this.toolSlot,
         this.options.element,
@@ -199,9 +212,8 @@ export class DeformView implements View {
   }
 
   show(networkId: string | undefined): void {
-    this.wanted = networkId;
     document.title = 'Deform · tourmap';
-    if (this.networks) this.openWanted();
+    this.picker.want(networkId);
   }
 
   catalogChanged(lastImport: LastImport | undefined): void {
@@ -211,40 +223,16 @@ export class DeformView implements View {
   }
 
   private async loadNetworks(): Promise<void> {
-    if (!this.networks) this.status.loading('Loading road networks…');
+    const loaded = this.picker.items !== undefined;
+    if (!loaded) this.status.loading('Loading road networks…');
+    let networks: RoadNetworkSummary[];
     try {
-      this.networks = await fetchRoadNetworks();
+      networks = await fetchRoadNetworks();
     } catch (error) {
-      if (!this.networks) this.status.error('Could not load the road networks', error, () => void this.loadNetworks());
+      if (!loaded) this.status.error('Could not load the road networks', error, () => void this.loadNetworks());
       return;
     }
-    this.picker.replaceChildren(
-      ...this.networks.map((network) =>
-        h('option', { value: network.id }, `${network.name} — ${network.counts.edges.toLocaleString()} road segments`),
-      ),
-    );
-    this.picker.disabled = this.networks.length === 0;
-    this.openWanted();
-  }
-
-  private openWanted(): void {
-    const networks = this.networks ?? [];
-    if (!this.wanted) {
-      if (networks[0]) this.go(networks[0].id, true);
-      else this.status.error('No road networks yet', new Error('Import one with `tourmap import roads` and it will appear here.'));
-      return;
-    }
-    const network = networks.find((candidate) => candidate.id === this.wanted);
-    if (!network) {
-      this.load?.abort();
-      this.drawn = undefined;
-      this.closeNetwork();
-      this.setCanvasStatus('error');
-      this.status.error(`There is no road network “${this.wanted}”`, new Error('Pick one of the networks in the list.'));
-      return;
-    }
-    this.picker.value = network.id;
-    if (this.drawn !== network.id) void this.loadNetwork(network);
+    this.picker.setItems(networks);
   }
 
   private async loadNetwork(summary: RoadNetworkSummary): Promise<void> {
