@@ -28,6 +28,10 @@ export interface Insets {
 const NO_INSETS: Insets = { top: 0, right: 0, bottom: 0, left: 0 };
 
 const FIT_PADDING_PX = 28;
+/** growFitMargins refits at most this often per new frame, bounds or size (the names can change with the zoom). */
+const MAX_MARGIN_ROUNDS = 2;
+/** Fits whose margins are remembered (layouts x map sizes); forgotten all at once beyond. */
+const MAX_REMEMBERED_FITS = 64;
 /** Zoom limits, relative to the scale that fits the whole frame. */
 const MIN_ZOOM = 0.5;
 const MAX_ZOOM = 64;
@@ -64,6 +68,15 @@ export class SvgMap {
   private followsFit = true;
   private readonly settleListeners = new Set<() => void>();
   private insets: () => Insets = () => NO_INSETS;
+  /** Pixels per side fit() also keeps free: for names drawn beyond the fitted bounds (growFitMargins). */
+  private margins: Insets = NO_INSETS;
+  /** Margin rounds since the last new frame, bounds or size (growFitMargins stops at MAX_MARGIN_ROUNDS). */
+  private marginRounds = 0;
+  /**
+   * The margins grown per fitted bounds and map size: the same layout at the same size fits
+   * the same way again (back from another layout), whatever was shown in between.
+   */
+  private readonly marginsByFit = new Map<string, Insets>();
   private readonly renderListeners = new Set<() => void>();
   private gestureFilter: (event: Event) => boolean = () => true;
   /** Part of the frame fit() shows instead of the whole frame: [x0, y0, x1, y1]. */
@@ -103,6 +116,7 @@ export class SvgMap {
 
     // Also fires when a hidden view is shown again.
     new ResizeObserver(() => {
+      this.recallMargins();
       if (this.followsFit) this.fit(false);
       else this.settle();
     }).observe(this.element);
@@ -118,6 +132,8 @@ export class SvgMap {
     if (same) return;
     // Set even when fit() cannot run yet (a hidden view): the first resize then fits.
     this.followsFit = true;
+    this.marginsByFit.clear();
+    this.recallMargins();
     this.fit(false);
   }
 
@@ -127,6 +143,52 @@ export class SvgMap {
    */
   setFitBounds(bounds: [number, number, number, number] | null): void {
     this.fitBounds = bounds;
+    this.recallMargins();
+  }
+
+  /** The key of what fit() fits: the bounds at the map's size. */
+  private fitKey(): string {
+    const { width, height } = this.size;
+    return `${this.fitBounds ? this.fitBounds.map((v) => v.toFixed(1)).join(',') : 'frame'}@${width}x${height}`;
+  }
+
+  /** The margins grown before for what fit() fits now (none the first time), and new rounds. */
+  private recallMargins(): void {
+    this.margins = this.marginsByFit.get(this.fitKey()) ?? NO_INSETS;
+    this.marginRounds = 0;
+  }
+
+  /**
+   * The map element's part fit() fills, in client pixels: the element less the panels' insets
+   * (as fit() counts them). What is drawn outside it after a fit is cut off or covered.
+   */
+  fitArea(): DOMRect {
+    const box = this.element.getBoundingClientRect();
+    const { width, height } = this.size;
+    let { top, right, bottom, left } = this.insets();
+    if (left + right > width / 2) left = right = 0;
+    if (top + bottom > height / 2) top = bottom = 0;
+    return new DOMRect(box.left + left, box.top + top, width - left - right, height - top - bottom);
+  }
+
+  /**
+   * Station names keep their size in pixels, so a fit of the stations' bounds can put the
+   * outer names off the map (a phone's narrow screen). Called with how far names stick out of
+   * fitArea() per side after a fit, this widens those sides' margins by as much and fits
+   * again, while the map follows its fit; a few rounds at most, since other names may show at
+   * the new zoom. True when it refitted.
+   */
+  growFitMargins(over: Insets): boolean {
+    if (!this.followsFit || this.marginRounds >= MAX_MARGIN_ROUNDS) return false;
+    const grow = (side: keyof Insets) => Math.max(0, Math.ceil(over[side]));
+    if (grow('top') + grow('right') + grow('bottom') + grow('left') === 0) return false;
+    this.marginRounds += 1;
+    const m = this.margins;
+    this.margins = { top: m.top + grow('top'), right: m.right + grow('right'), bottom: m.bottom + grow('bottom'), left: m.left + grow('left') };
+    if (this.marginsByFit.size >= MAX_REMEMBERED_FITS) this.marginsByFit.clear();
+    this.marginsByFit.set(this.fitKey(), this.margins);
+    this.fit(false);
+    return true;
   }
 
   /** True until the user moves the map: a resize (or a view that wants to) fits it again. */
@@ -240,6 +302,14 @@ export class SvgMap {
     const k = Math.min((width - left - right - 2 * pad) / frame.width, (height - top - bottom - 2 * pad) / frame.height);
     // The zoom limits stay those of the whole frame; fitBounds only says what to show.
     const [bx0, by0, bx1, by1] = this.fitBounds ?? [0, 0, frame.width, frame.height];
+    // The names' margins (growFitMargins), at most a third of each direction's room.
+    const shrink = (a: number, b: number, room: number) => (a + b > room / 3 ? room / 3 / (a + b) : 1);
+    const sx = shrink(this.margins.left, this.margins.right, width - left - right - 2 * pad);
+    const sy = shrink(this.margins.top, this.margins.bottom, height - top - bottom - 2 * pad);
+    left += this.margins.left * sx;
+    right += this.margins.right * sx;
+    top += this.margins.top * sy;
+    bottom += this.margins.bottom * sy;
     const fitK = Math.min(
       (width - left - right - 2 * pad) / Math.max(bx1 - bx0, 1e-9),
       (height - top - bottom - 2 * pad) / Math.max(by1 - by0, 1e-9),

@@ -585,6 +585,37 @@ export class MetroLayers {
       label.text.setAttribute('visibility', 'visible');
     }
     this.map.requestRender();
+    // After that render (frame callbacks run in the order asked for).
+    requestAnimationFrame(() => this.keepNamesOnTheMap());
+  }
+
+  /**
+   * The server places names for the layout, not for the screen: after a fit, the outer ones
+   * may stick out of the map (a phone's narrow screen). The map then fits again with room for
+   * them (SvgMap.growFitMargins, only while it follows its fit); names still cut off after its
+   * rounds (the room is capped, and other names show at the new zoom) are hidden rather than
+   * shown in part: zooming in shows them. A map the user moved shows what it shows.
+   */
+  private keepNamesOnTheMap(): void {
+    if (this.moving || !this.map.followingFit) return;
+    const area = this.map.fitArea();
+    const over = { top: 0, right: 0, bottom: 0, left: 0 };
+    const outside: SVGTextElement[] = [];
+    const breathing = 6; // px between a grown margin's name and the map's edge
+    for (const { label } of this.stations.values()) {
+      if (label.text.getAttribute('visibility') !== 'visible') continue;
+      const box = label.text.getBoundingClientRect();
+      if (box.width === 0) continue;
+      const cut = box.left < area.left || box.right > area.right || box.top < area.top || box.bottom > area.bottom;
+      if (!cut) continue;
+      outside.push(label.text);
+      over.left = Math.max(over.left, area.left - box.left + breathing);
+      over.right = Math.max(over.right, box.right - area.right + breathing);
+      over.top = Math.max(over.top, area.top - box.top + breathing);
+      over.bottom = Math.max(over.bottom, box.bottom - area.bottom + breathing);
+    }
+    if (outside.length === 0 || this.map.growFitMargins(over)) return;
+    for (const text of outside) text.setAttribute('visibility', 'hidden');
   }
 
   /** The name's leader from the symbol's rim to its box ([x0, y0, x1, y1] px from `at`), or none. */
