@@ -232,7 +232,8 @@ std::string interests_key(const LayoutRequest& req) {
 }
 
 void resolve_interests(LayoutRequest& req, const CityMetroData& data) {
-  for (const auto& [id, w] : req.interests_given) {
+  for (const auto& given : req.interests_given) {
+    const std::string& id = given.first;  // not a structured binding: clang 14 cannot capture those
     const auto& list = data.categories.list;
     if (std::none_of(list.begin(), list.end(), [&](const poi::CategoryCount& c) { return c.id == id; })) {
       std::string known;
