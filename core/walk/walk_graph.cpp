@@ -85,7 +85,9 @@ std::shared_ptr<const WalkGraph> build_walk_graph(const model::RoadNetwork& net,
     g.snap_tree.insert({geo::nearest::Point(xy.x, xy.y), v});
     ++g.snap_vertices;
   }
-  g.snap_tree.build();  // now, not lazily at the first search: searches may run in parallel
+  // Now, not lazily at the first search: searches may run in parallel. Not when empty: CGAL's
+  // build dereferences the first point (UBSan); snap_to_road never searches an empty tree.
+  if (g.snap_vertices > 0) g.snap_tree.build();
   return out;
 }
 

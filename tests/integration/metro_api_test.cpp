@@ -1,6 +1,7 @@
 // The metro map endpoints against a real server: layout, visual worth, clusters, bad input.
 
 #include "live_server_suite.hpp"
+#include "slowdown.hpp"
 
 #include <gtest/gtest.h>
 
@@ -134,7 +135,9 @@ TEST_F(MetroApi, PostLayoutAndMip) {
   EXPECT_TRUE(l["solver"].contains("mip")) << l["solver"];
   EXPECT_FALSE(l["solver"]["mip"]["status"].get<std::string>().empty());
   EXPECT_EQ(l["quality"]["octilinear_share"], 1.0);
-  EXPECT_LE(l["timing_ms"]["total"].get<double>(), 3000.0 + 1500.0);  // the time limit, plus the child's grace
+  // The time limit, plus the child's grace and the stages after the solver (warp, names), which
+  // run test::kSlowdown times slower under sanitizers (4527 ms there once, against 4500).
+  EXPECT_LE(l["timing_ms"]["total"].get<double>(), 3000.0 + 1500.0 * test::kSlowdown);
 }
 
 TEST_F(MetroApi, VisualWorthRaster) {
