@@ -232,16 +232,14 @@ void CrowdRenderer::Impl::render(const FrameRequest& request, std::vector<std::u
   // LOD cut with view-frustum culling per instance (sec. 3.5.1); NoLOD is the leaf cut.
   const auto t_cut = Clock::now();
   const float poe = request.mode == RenderMode::no_lod ? 0.f : request.poe;
-  cut.clear();
-  cut_begin.assign(n + 1, 0);
+  cut_input.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     const InstanceState& inst = request.instances[i];
-    crowd::CutStats cut_stats;
-    crowd::lod_cut(models[static_cast<std::size_t>(inst.model)]->hierarchy(), inst.world, request.camera, poe, cut,
-                   cut_stats);
-    stats.frustum_culled += cut_stats.frustum_culled;
-    cut_begin[i + 1] = cut.size();
+    cut_input[i] = {&models[static_cast<std::size_t>(inst.model)]->cut_tree(), &inst.world};
   }
+  crowd::CutStats cut_stats;
+  crowd::cut_instances(cut_input, request.camera, poe, &cut_threads, cut_workspace, cut, cut_begin, cut_stats);
+  stats.frustum_culled += cut_stats.frustum_culled;
   stats.lod_cut_ms = ms_since(t_cut);
 
   const auto t_render = Clock::now();

@@ -3,10 +3,12 @@
 // cut, instanced drawing, readback) and occlusion_pass.cpp (VDR+OC, sec. 3.5.2).
 
 #include "crowd_renderer.hpp"
+#include "crowd/cut_instances.hpp"
 #include "crowd_shaders.hpp"
 #include "gl_program.hpp"
 #include "gpu_model.hpp"
 #include "occlusion.hpp"
+#include "util/fork_join.hpp"
 
 #include <Eigen/Core>
 
@@ -87,6 +89,14 @@ struct CrowdRenderer::Impl {
 
   // Per-frame scratch, kept to avoid reallocating.
   std::vector<detail::GpuInstance> gpu_instances;
+  // Threads of the LOD cut (crowd::cut_instances; the cut is the same for any count). One: on
+  // this shared 2-core machine (llvmpipe and other streams busy) a second thread measured slower,
+  // p50 0.26 vs 0.22 ms and p99 ~5.5 vs ~0.35 ms for 1,000 characters (bench/crowd_bench section
+  // 3): the wake-up costs more than the walk it shares, and a preempted helper stalls the frame.
+  static constexpr int kCutThreads = 1;
+  util::ForkJoin cut_threads{kCutThreads};
+  crowd::CutWorkspace cut_workspace;
+  std::vector<crowd::CutInstance> cut_input;
   std::vector<int> cut;                    // all instances' cuts, back to back
   std::vector<std::size_t> cut_begin;      // instance i's cut is [cut_begin[i], cut_begin[i + 1])
   std::vector<std::uint32_t> key_count, key_next;

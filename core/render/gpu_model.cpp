@@ -140,6 +140,7 @@ GpuModel::GpuModel(const crowd::SkinnedModel& model, const crowd::ClusterHierarc
   hierarchy_.clusters = hierarchy.clusters;
   hierarchy_.root = hierarchy.root;
   hierarchy_.stats = hierarchy.stats;
+  cut_tree_ = crowd::build_cut_tree(hierarchy_);
 
   // The index buffer layout: leaves in depth-first order, then inner clusters by (depth, order).
   std::vector<int> dfs;

@@ -7,6 +7,7 @@
 // (sec. 3.6). Needs the owning EglContext current for its whole life.
 
 #include "crowd/cluster_hierarchy.hpp"
+#include "crowd/cut_tree.hpp"
 #include "crowd/skinned_model.hpp"
 
 #include <cstdint>
@@ -30,6 +31,8 @@ class GpuModel {
 
   // The hierarchy without its index array (which lives on the GPU), for the CPU-side LOD cut.
   const crowd::ClusterHierarchy& hierarchy() const { return hierarchy_; }
+  // The hierarchy flattened for the per-frame LOD cut (crowd::cut_instances).
+  const crowd::CutTree& cut_tree() const { return cut_tree_; }
   // Bounds of each cluster's whole subtree (its own bounds joined with its descendants'): the
   // conservative box for occlusion queries, as a simplified cluster may not cover its children.
   const std::vector<crowd::Box3>& subtree_bounds() const { return subtree_bounds_; }
@@ -57,6 +60,7 @@ class GpuModel {
 
   std::string name_;
   crowd::ClusterHierarchy hierarchy_;
+  crowd::CutTree cut_tree_;
   std::vector<crowd::Box3> subtree_bounds_;
   std::vector<float> fineness_;
   std::vector<int> index_order_;
