@@ -37,6 +37,16 @@ struct CrowdView {
   bool has_camera = false;  // false: use the scene's default camera
   bool heatmap = false, animate = true;
   int count = 0;            // 0: the scene's default
+  // Frames per second to hold while the camera moves or the crowd animates, by lowering the
+  // resolution, LOD and JPEG quality; a still camera then gets one full-quality frame.
+  // 0: every frame at full quality.
+  int target_fps = 15;
+
+  bool operator==(const CrowdView&) const = default;
+  // Same eye, target and field of view (or both the scene's default camera).
+  bool same_camera(const CrowdView& o) const {
+    return has_camera == o.has_camera && (!has_camera || (eye == o.eye && target == o.target && fov == o.fov));
+  }
 };
 
 // Applies a {"type":"view", ...} message on top of `current` (fields left out keep their value).

@@ -41,6 +41,15 @@ struct CrowdStreamer::Stream {
   Clock::time_point window_start = Clock::now();
   int messages_in_window = 0;
   double fps = 0;          // exponential average of the frame rate
+  QualityController quality;           // interactive frames' level
+  Clock::time_point camera_moved_at{}; // the last view message that moved the camera
+  Clock::time_point frame_done{};      // when the last frame was sent (or found unchanged)
+  bool still_pending = false;          // the last frame sent was below full quality
+  // The last frame sent while not animating (at most max_width x max_height x 4 bytes), to
+  // skip sending the same picture again.
+  std::vector<std::uint8_t> last_rgba;
+  int last_width = 0, last_height = 0;
+  std::uint64_t views = 0;             // view messages applied; a frame's stats name the count
 };
 
 struct CrowdStreamer::RenderState {
@@ -169,7 +178,13 @@ WsEndpoint CrowdStreamer::endpoint() {
     }
     try {
       std::lock_guard lock(mutex_);
-      st->view = api::apply_view_message(msg, st->view, limits_);
+      const api::CrowdView next = api::apply_view_message(msg, st->view, limits_);
+      if (st->has_view && !st->failed && next == st->view) return;  // nothing new to render
+      // A camera moved after the first frame: interactive frames until it rests.
+      if (st->has_view && st->frame_id.load() > 0 && next.scene == st->view.scene && !next.same_camera(st->view))
+        st->camera_moved_at = Clock::now();
+      st->view = next;
+      ++st->views;
       st->has_view = true;
       st->dirty = true;
       st->failed = false;
@@ -217,23 +232,30 @@ void CrowdStreamer::run() {
       // (a frame becomes due when its predecessor is written or the fps cap allows).
       const auto wants_frames = [this] {
         for (const auto& [key, st] : streams_)
-          if (st->has_view && !st->failed && (st->dirty || st->view.animate)) return true;
+          if (st->has_view && !st->failed && (st->dirty || st->view.animate || st->still_pending)) return true;
         return false;
       };
       if (wants_frames()) wake_.wait_for(lock, std::chrono::milliseconds(5));
       else wake_.wait(lock, [&] { return stopping_ || wants_frames(); });
       if (stopping_) break;
       const auto now = Clock::now();
-      // Fairness: of the streams due now, the one that waited longest since its last frame.
+      // Fairness: of the streams due now, the one that waited longest since its last frame; a
+      // full-quality frame for a camera that came to rest goes first (it is what a user waits for).
+      bool due_still = false;
       for (auto& [key, st] : streams_) {
         auto s = st->session.lock();
         if (!s || s->is_closed() || !st->has_view || st->failed) continue;
-        if (!st->dirty && !st->view.animate) continue;     // nothing changed
+        // At rest: no move for kCameraSettle, and none in as long after the last frame (a client
+        // that moves the camera once it sees a frame is not at rest while a slow frame renders).
+        const bool still = st->still_pending && !st->view.animate &&
+                           now - std::max(st->camera_moved_at, st->frame_done) >= kCameraSettle;
+        if (!st->dirty && !st->view.animate && !still) continue;  // nothing changed
         if (s->binary_in_flight() > 0) continue;           // previous frame not written yet
         if (st->uses_acks && st->acked < st->frame_id.load()) continue;  // nor acknowledged
         if (now - st->last_frame < min_interval) continue;  // fps cap
-        if (!due || st->last_frame < due->last_frame) {
+        if (!due || (still && !due_still) || (still == due_still && st->last_frame < due->last_frame)) {
           due = st;
+          due_still = still;
           session = std::move(s);
         }
       }
@@ -334,16 +356,26 @@ std::string ready_json(const std::string& scene, const PreparedScene& p) {
 
 void CrowdStreamer::render_one(Stream& st, const std::shared_ptr<WsSession>& session) {
   api::CrowdView view;
-  bool changed = false;
+  bool changed = false, in_motion = false;
+  std::uint64_t views = 0;
   Clock::time_point previous;
+  std::size_t active = 1;
+  const auto t0 = Clock::now();
   {
     std::lock_guard lock(mutex_);
     view = st.view;
+    views = st.views;
     changed = st.dirty;
     st.dirty = false;
     previous = st.last_frame;
+    in_motion = view.animate || t0 - st.camera_moved_at < kCameraSettle;
+    // Streams that want frames continuously share the render thread, hence each one's budget.
+    active = 0;
+    for (const auto& [key, other] : streams_)
+      if (other->has_view && !other->failed &&
+          (other->view.animate || other->dirty || t0 - other->camera_moved_at < std::chrono::milliseconds(500)))
+        ++active;
   }
-  const auto t0 = Clock::now();
   const double started_ms =
       std::chrono::duration<double, std::milli>(std::chrono::system_clock::now().time_since_epoch()).count();
   try {
@@ -360,6 +392,10 @@ void CrowdStreamer::render_one(Stream& st, const std::shared_ptr<WsSession>& ses
     if (view.animate && previous != Clock::time_point{})
       st.anim_t += std::min(0.25, std::chrono::duration<double>(t0 - previous).count());  // no jumps after stalls
 
+    const auto t_start = Clock::now();  // after preparing: the frame's own cost
+    const int level = in_motion && view.target_fps > 0 ? st.quality.choose(frame_budget_ms(view.target_fps, active)) : 0;
+    const FrameQuality fq = frame_quality(level, view.width, view.height, view.poe, view.quality);
+
     const auto& dc = p.scene.default_camera;
     SceneCamera cam;
     cam.eye = view.has_camera ? crowd::Vec3(view.eye[0], view.eye[1], view.eye[2]) : dc.eye;
@@ -369,33 +405,64 @@ void CrowdStreamer::render_one(Stream& st, const std::shared_ptr<WsSession>& ses
     // lifted just above the ground box (2 cm). Should that land it on the target, it goes up 1 m.
     cam.eye.y() = std::max(cam.eye.y(), kMinEyeHeightM);
     if ((cam.eye - cam.target).squaredNorm() < 1e-6f) cam.eye.y() += 1.f;
-    cam.width = view.width;
-    cam.height = view.height;
+    cam.width = fq.width;
+    cam.height = fq.height;
     render::FrameRequest req;
-    scene_frame_request(p, st.anim_t, cam, to_render_mode(view.mode), view.poe, view.heatmap, req, render_->placements);
+    scene_frame_request(p, st.anim_t, cam, to_render_mode(view.mode), fq.cut_poe, view.heatmap, req,
+                        render_->placements);
     if (render_->last_stream != st.serial) render_->renderer->reset_coherence();
     render_->last_stream = st.serial;
     render::FrameStats fs{};
     render_->renderer->render(req, render_->rgba, fs);
     const auto t1 = Clock::now();
-    std::string jpeg = render_->encoder.encode_rgba(render_->rgba.data(), view.width, view.height, view.quality, true);
+    // The same picture as the last one sent (a view message that changed nothing visible, such
+    // as VDR+OC to VDR, or a rest after frames at full quality) is not encoded nor sent again;
+    // its stats are, naming the frame the client already shows, with "unchanged": true.
+    const bool unchanged = !view.animate && st.last_width == fq.width && st.last_height == fq.height &&
+                           st.last_rgba == render_->rgba;
+    const std::uint32_t id = unchanged ? st.frame_id.load() : ++st.frame_id;
+    std::string message;
+    if (unchanged) {
+      ++frames_unchanged_;
+    } else {
+      message = frame_header(id, fq.width, fq.height, started_ms);
+      render_->encoder.encode_rgba_append(render_->rgba.data(), fq.width, fq.height, fq.jpeg_quality, true, message);
+    }
     const auto t2 = Clock::now();
-    const std::uint32_t id = ++st.frame_id;
-    const std::size_t bytes = jpeg.size();
-    ++frames_sent_;  // before the client can see the frame: /metrics never lags what it got
-    session->send_binary(frame_header(id, view.width, view.height, started_ms) + jpeg);
+    const std::size_t bytes = unchanged ? 0 : message.size() - 24;
+    if (!unchanged) {
+      ++frames_sent_;  // before the client can see the frame: /metrics never lags what it got
+      session->send_binary(std::move(message));
+      if (view.animate) {
+        st.last_rgba.clear();
+        st.last_width = st.last_height = 0;
+      } else {
+        st.last_rgba = render_->rgba;
+        st.last_width = fq.width;
+        st.last_height = fq.height;
+      }
+    }
+    st.quality.record(fq.level, ms_between(t_start, t2));
     const double frame_ms = ms_between(t0, t2);
     if (previous != Clock::time_point{}) {
       const double dt = std::chrono::duration<double>(t0 - previous).count();
       if (dt > 0) st.fps = st.fps == 0 ? 1.0 / dt : 0.8 * st.fps + 0.2 / dt;
     }
+    const QualityLevel& ql = kQualityLevels[static_cast<std::size_t>(fq.level)];
     session->send_text(nlohmann::json{{"type", "stats"},
                                       {"frame", id},
                                       {"scene", view.scene},
                                       {"mode", api::mode_name(view.mode)},
                                       {"poe", view.poe},
-                                      {"width", view.width},
-                                      {"height", view.height},
+                                      {"width", fq.width},
+                                      {"height", fq.height},
+                                      {"quality",
+                                       {{"mode", in_motion ? "interactive" : "still"},
+                                        {"level", fq.level},
+                                        {"scale", fq.level == 0 ? 1.f : ql.scale},
+                                        {"poe", view.poe * ql.poe_factor},
+                                        {"jpeg", fq.jpeg_quality},
+                                        {"target_fps", view.target_fps}}},
                                       {"characters", p.scene.count},
                                       {"full_triangles", p.full_triangles},
                                       {"triangles", fs.triangles},
@@ -412,8 +479,12 @@ void CrowdStreamer::render_one(Stream& st, const std::shared_ptr<WsSession>& ses
                                         {"frame", frame_ms}}},
                                       {"fps", st.fps},
                                       {"changed", changed},
+                                      {"unchanged", unchanged},
+                                      {"view", views},
                                       {"bytes", bytes}}
                            .dump());
+    std::lock_guard lock(mutex_);
+    st.still_pending = fq.level > 0;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "crowd: stream failed: %s\n", e.what());
     session->send_text(api::ws_error_message("unavailable", std::string("cannot render the scene: ") + e.what()));
@@ -422,6 +493,7 @@ void CrowdStreamer::render_one(Stream& st, const std::shared_ptr<WsSession>& ses
   }
   std::lock_guard lock(mutex_);
   st.last_frame = t0;
+  st.frame_done = Clock::now();
 }
 
 }  // namespace tourmap::server

@@ -194,6 +194,9 @@ int serve(const Config& config, const std::function<void(unsigned short)>& on_li
                           [&crowd] { return static_cast<double>(crowd.streams()); });
   state.metrics.add_gauge("tourmap_crowd_frames_sent", "Crowd frames sent since the start (grows).",
                           [&crowd] { return static_cast<double>(crowd.frames_sent()); });
+  state.metrics.add_gauge("tourmap_crowd_frames_unchanged",
+                          "Crowd frames rendered but not sent: the same picture as the stream's last (grows).",
+                          [&crowd] { return static_cast<double>(crowd.frames_unchanged()); });
   state.metrics.add_gauge("tourmap_deform_cache_bytes",
                           "Bytes the deformation caches hold (networks, prepared systems, answers), as charged.",
                           [&deform] {

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstring>
 #include <thread>
 
@@ -68,8 +69,18 @@ json error_message(WsClient& ws) {
   throw std::runtime_error("no error message");
 }
 
+// target_fps 0: every frame at full quality, one frame per change (the tests count frames; the
+// interactive/still frames have their own test).
 const char* kSmallOffice =
-    R"({"type":"view","scene":"office","count":12,"width":160,"height":120,"quality":70,"mode":"vdr+oc","animate":false})";
+    R"({"type":"view","scene":"office","count":12,"width":160,"height":120,"quality":70,"mode":"vdr+oc","animate":false,)"
+    R"("target_fps":0})";
+
+// The value of a /metrics line, -1 when missing.
+double metric(LiveServer& s, const std::string& name) {
+  const std::string body = "\n" + s.get("/metrics").body;
+  const auto at = body.find("\n" + name + " ");
+  return at == std::string::npos ? -1 : std::atof(body.c_str() + at + name.size() + 2);
+}
 
 TEST(CrowdApi, ScenesListTheThreeScenesWithLimitsAndAttribution) {
   LiveServer s(crowd_flags());
@@ -115,18 +126,71 @@ TEST(CrowdApi, AnEyeUnderTheFloorIsLiftedAboveIt) {
   LiveServer s(crowd_flags());
   WsClient ws(s.port(), "/api/v1/crowd/stream");
   ws.send(R"({"type":"view","scene":"office","count":12,"width":160,"height":120,"quality":70,"mode":"vdr","animate":false,)"
-          R"("camera":{"eye":[5,0.05,2],"target":[20,1,20],"fov":60}})");
+          R"("target_fps":0,"camera":{"eye":[5,0.05,2],"target":[20,1,20],"fov":60}})");
   Frame above = next_frame(ws);
-  // 3 m under the floor: rendered from 5 cm above it, the same picture.
+  EXPECT_EQ(metric(s, "tourmap_crowd_frames_unchanged"), 0);
+  // 3 m under the floor: rendered from 5 cm above it, the same picture, which is not sent again:
+  // only its stats, naming the frame the client shows.
   ws.send(R"({"type":"view","camera":{"eye":[5,-3,2],"target":[20,1,20],"fov":60}})");
-  Frame under = next_frame(ws);
-  EXPECT_GT(under.id, above.id);
-  EXPECT_EQ(under.jpeg, above.jpeg);
-  // Lifted onto the target itself: moved up again, a top view, still a frame.
+  json same;
+  while (same.empty()) {
+    const auto m = ws.receive_message(120s);
+    ASSERT_FALSE(m.binary) << "the same picture was sent again";
+    const json j = json::parse(m.data);
+    if (j["type"] == "stats") same = j;
+  }
+  EXPECT_EQ(same["frame"], above.id);
+  EXPECT_EQ(same["unchanged"], true);
+  EXPECT_EQ(same["bytes"], 0);
+  EXPECT_EQ(metric(s, "tourmap_crowd_frames_unchanged"), 1);
+  EXPECT_EQ(metric(s, "tourmap_crowd_frames_sent"), 1);
+  // Lifted onto the target itself: moved up again, a top view, a new frame (the next id).
   ws.send(R"({"type":"view","camera":{"eye":[20,-1,20],"target":[20,0.05,20],"fov":60}})");
   Frame onto = next_frame(ws);
-  EXPECT_GT(onto.id, under.id);
+  EXPECT_EQ(onto.id, above.id + 1);
   EXPECT_GT(onto.jpeg.size(), 100u);
+  EXPECT_NE(onto.jpeg, above.jpeg);
+}
+
+// Issue 18: while the camera moves, frames that hold target_fps (smaller, coarser); once it rests,
+// one frame at the full size and quality. NoLOD at 1280x720 with 200 characters costs far more
+// than 30 fps allow on any software renderer, so the moving frames must come smaller.
+TEST(CrowdApi, AMovingCameraGetsInteractiveFramesThenOneFullQualityStillFrame) {
+  LiveServer s(crowd_flags());
+  WsClient ws(s.port(), "/api/v1/crowd/stream");
+  ws.send(R"({"type":"view","scene":"office","width":1280,"height":720,"quality":90,"mode":"nolod","animate":false,)"
+          R"("target_fps":30})");
+  const Frame first = next_frame(ws);
+  EXPECT_EQ(first.stats["quality"]["mode"], "still");
+  EXPECT_EQ(first.width, 1280);
+  const json& target = first.stats["quality"];
+  EXPECT_EQ(target["target_fps"], 30);
+  EXPECT_EQ(target["jpeg"], 90);
+  Frame last = first;
+  for (int k = 1; k <= 4; ++k) {  // each move right after the previous frame: the camera is moving
+    const double a = 0.2 * k;
+    ws.send(json{{"type", "view"},
+                 {"camera", {{"eye", {20 + 18 * std::cos(a), 6, 20 + 18 * std::sin(a)}}, {"target", {20, 1, 20}}, {"fov", 60}}}}
+                .dump());
+    last = next_frame(ws);
+    const json& q = last.stats["quality"];
+    EXPECT_EQ(q["mode"], "interactive") << k;
+    EXPECT_GT(q["level"].get<int>(), 0) << k;
+    EXPECT_LT(last.width, 1280) << k;
+    EXPECT_EQ(last.width, last.stats["width"]) << k;  // the header and the stats agree
+    EXPECT_NEAR(static_cast<double>(last.width) / last.height, 1280.0 / 720.0, 0.02) << k;
+    EXPECT_LE(q["jpeg"].get<int>(), 90);
+    EXPECT_GT(q["poe"].get<double>(), 0.5);  // coarser than asked, in the client's pixels
+  }
+  // The camera rests: the same view at full quality, then nothing more.
+  const Frame still = next_frame(ws);
+  EXPECT_EQ(still.id, last.id + 1);
+  EXPECT_EQ(still.stats["quality"]["mode"], "still");
+  EXPECT_EQ(still.stats["quality"]["level"], 0);
+  EXPECT_EQ(still.width, 1280);
+  EXPECT_EQ(still.height, 720);
+  EXPECT_EQ(still.stats["quality"]["jpeg"], 90);
+  EXPECT_THROW(ws.receive_message(1500ms), std::exception);
 }
 
 TEST(CrowdApi, StreamSendsJpegFramesWithStatsAndFollowsTheCamera) {
@@ -172,6 +236,8 @@ TEST(CrowdApi, BadMessagesGetErrorsNamingTheFieldAndTheStreamGoesOn) {
   EXPECT_EQ(error_message(ws)["field"], "type");
   ws.send(R"({"type":"view","scene":"atlantis"})");
   EXPECT_EQ(error_message(ws)["field"], "scene");
+  ws.send(R"({"type":"view","scene":"office","target_fps":31})");
+  EXPECT_EQ(error_message(ws)["field"], "target_fps");
   ws.send(kSmallOffice);
   next_frame(ws);
   ws.send(R"({"type":"view","poe":-1})");

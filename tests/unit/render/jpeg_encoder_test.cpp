@@ -55,6 +55,25 @@ TEST(JpegEncoder, BottomUpFlipsRows) {
   EXPECT_LT(back[static_cast<std::size_t>((0 * w + 8) * 3)], 100);
 }
 
+TEST(JpegEncoder, AppendsAfterAHeaderAndGrowsItsBufferForLargerFrames) {
+  JpegEncoder enc;
+  std::vector<std::uint8_t> small(16 * 16 * 4, 90), large(300 * 200 * 4);
+  for (std::size_t i = 0; i < large.size(); ++i) large[i] = static_cast<std::uint8_t>(i * 7919 % 251);  // noise: big output
+  std::string message = "HEAD";
+  enc.encode_rgba_append(small.data(), 16, 16, 80, true, message);
+  EXPECT_EQ(message.substr(0, 4), "HEAD");
+  EXPECT_EQ(message.substr(4), enc.encode_rgba(small.data(), 16, 16, 80, true));
+  std::string big;
+  enc.encode_rgba_append(large.data(), 300, 200, 95, false, big);
+  EXPECT_GT(big.size(), 20000u);  // larger than the first frame's buffer
+  tjhandle dec = tjInitDecompress();
+  int dw = 0, dh = 0, sub = 0, cs = 0;
+  ASSERT_EQ(tjDecompressHeader3(dec, reinterpret_cast<const unsigned char*>(big.data()), big.size(), &dw, &dh, &sub, &cs), 0);
+  tjDestroy(dec);
+  EXPECT_EQ(dw, 300);
+  EXPECT_EQ(dh, 200);
+}
+
 TEST(JpegEncoder, RejectsAnEmptyImage) {
   JpegEncoder enc;
   std::uint8_t px[4] = {0, 0, 0, 255};

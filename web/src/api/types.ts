@@ -544,6 +544,8 @@ export interface CrowdViewMessage {
   heatmap: boolean;
   animate: boolean;
   count?: number;
+  /** Frames per second to hold while the camera moves or the crowd animates (0: always full quality). */
+  target_fps?: number;
 }
 
 export interface CrowdProgressMessage {
@@ -580,6 +582,23 @@ export interface CrowdStatsMessage {
   ms: { lod_cut: number; render: number; encode: number; frame: number; readback?: number };
   fps: number;
   bytes: number;
+  /** How the frame was rendered: while moving (smaller, coarser) or at rest (full quality). */
+  quality?: CrowdFrameQuality;
+  /** View messages that changed the view before this frame was rendered. */
+  view?: number;
+  /** The picture came out the same as frame `frame`, which the client shows: no new frame was sent. */
+  unchanged?: boolean;
+}
+
+export interface CrowdFrameQuality {
+  mode: 'interactive' | 'still';
+  level: number;
+  /** Of the requested width and height. */
+  scale: number;
+  /** Pixels of error of the cut, in the requested frame's pixels. */
+  poe: number;
+  jpeg: number;
+  target_fps: number;
 }
 
 export interface CrowdErrorMessage {

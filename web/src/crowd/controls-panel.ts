@@ -13,6 +13,8 @@ export interface CrowdSettings {
   animate: boolean;
   resolution: Resolution;
   quality: number;
+  /** Frames per second to hold while moving (lower resolution and detail); 0: always full quality. */
+  smoothFps: number;
   /** Characters; undefined: the scene's default. */
   count?: number;
 }
@@ -33,7 +35,13 @@ const RESOLUTIONS: { value: Resolution; label: string }[] = [
 /** The PoE slider spans 0.1 … 16 pixels on a log scale (within the server's limits). */
 const POE_RANGE = { min: 0.1, max: 16 };
 const POE_STEPS = 1000;
-const DEFAULTS: CrowdSettings = { mode: 'vdr+oc', poe: 0.5, heatmap: false, animate: true, resolution: 1, quality: 75 };
+const DEFAULTS: CrowdSettings = { mode: 'vdr+oc', poe: 0.5, heatmap: false, animate: true, resolution: 1, quality: 75, smoothFps: 15 };
+
+const SMOOTHNESS: { value: number; label: string }[] = [
+  { value: 15, label: 'Smooth (15 fps)' },
+  { value: 24, label: 'Smoother (24 fps)' },
+  { value: 0, label: 'Always sharp' },
+];
 
 const significant = (value: number, digits: number) => Number(value.toPrecision(digits));
 
@@ -52,6 +60,7 @@ export class ControlsPanel {
   private readonly quality: HTMLInputElement;
   private readonly qualityOutput: HTMLOutputElement;
   private readonly count: HTMLInputElement;
+  private readonly smooth: HTMLSelectElement;
   private poeRange = { ...POE_RANGE };
 
   constructor(private readonly onChange: () => void) {
@@ -77,6 +86,16 @@ export class ControlsPanel {
     this.resolution.value = String(DEFAULTS.resolution);
     this.quality = h('input', { type: 'range', id: 'crowd-quality', min: 10, max: 95, step: 1, value: DEFAULTS.quality, 'data-testid': 'crowd-quality' });
     this.qualityOutput = h('output', { for: 'crowd-quality', class: 'num' }, String(DEFAULTS.quality));
+    this.smooth = h(
+      'select',
+      { id: 'crowd-smooth', 'data-testid': 'crowd-smooth', 'aria-describedby': 'crowd-smooth-help' },
+      ...SMOOTHNESS.map(({ value, label }) => h('option', { value: String(value) }, label)),
+    );
+    this.smooth.value = String(DEFAULTS.smoothFps);
+    this.smooth.addEventListener('change', () => {
+      this.state.smoothFps = Number(this.smooth.value);
+      this.onChange();
+    });
     this.count = h('input', { type: 'number', id: 'crowd-count', class: 'number-input', min: 1, step: 1, 'data-testid': 'crowd-count' });
 
     this.setPoe(DEFAULTS.poe);
@@ -142,6 +161,12 @@ export class ControlsPanel {
         h(
           'div',
           { class: 'advanced-body' },
+          h('label', { class: 'inline-field', for: 'crowd-smooth' }, 'While moving', this.smooth),
+          h(
+            'p',
+            { class: 'note', id: 'crowd-smooth-help' },
+            'While you move or the crowd walks, the picture is drawn smaller and simpler to keep this frame rate; when you stop, a sharp one follows.',
+          ),
           h('label', { class: 'inline-field', for: 'crowd-count' }, 'People', this.count),
           slider('JPEG quality', this.quality, this.qualityOutput),
         ),

@@ -1,4 +1,4 @@
-import type { CrowdStatsMessage } from '../api/types';
+import type { CrowdFrameQuality, CrowdStatsMessage } from '../api/types';
 import { h } from '../ui/dom';
 import { formatBytes, formatCount, formatFps, formatMs, formatPoe } from './format';
 
@@ -99,6 +99,8 @@ export class StatsOverlay {
     data.triangles = String(stats.triangles);
     data.width = String(stats.width);
     data.height = String(stats.height);
+    data.quality = stats.quality?.mode ?? 'still';
+    data.qualityLevel = String(stats.quality?.level ?? 0);
     this.render();
   }
 
@@ -138,6 +140,13 @@ export class StatsOverlay {
       { term: 'Size', value: stats ? `${stats.width} × ${stats.height}` : client ? `${client.width} × ${client.height}` : '—', key: 'size' },
       { term: 'Skipped', value: formatCount(this.dropped), key: 'dropped', title: 'Frames the browser skipped because a newer one arrived while decoding' },
       { term: 'Mode', value: stats ? `${stats.mode} · PoE ${formatPoe(stats.poe)} px` : '—', key: 'mode', wide: true },
+      {
+        term: 'Quality',
+        value: stats?.quality ? qualityText(stats.quality) : '—',
+        key: 'quality',
+        title: 'While moving, frames are drawn smaller and simpler to keep the frame rate; at rest, at full quality',
+        wide: true,
+      },
     ];
     this.table.replaceChildren(
       ...rows.map(({ term, value, key, title, wide }) =>
@@ -145,4 +154,10 @@ export class StatsOverlay {
       ),
     );
   }
+}
+
+/** "moving · 70 % size · PoE 1 px" or "still · full". */
+function qualityText(q: CrowdFrameQuality): string {
+  if (q.level === 0) return `${q.mode === 'interactive' ? 'moving' : 'still'} · full`;
+  return `moving · ${Math.round(q.scale * 100)}\u00a0% size · PoE ${formatPoe(q.poe)}\u00a0px`;
 }

@@ -249,6 +249,7 @@ export class CrowdView implements View {
       camera: this.camera.camera,
       heatmap: settings.heatmap,
       animate: settings.animate,
+      target_fps: settings.smoothFps,
       ...(settings.count !== undefined ? { count: settings.count } : {}),
     };
   }
