@@ -27,14 +27,18 @@ void QualityController::record(int frame_level, double ms) {
 
 double QualityController::predicted_ms(int at) const {
   at = std::clamp(at, 0, kLevels - 1);
-  if (cost_ms[static_cast<std::size_t>(at)] > 0) return cost_ms[static_cast<std::size_t>(at)];
-  // The nearest measured level, scaled by the assumed ratio per step.
-  for (int d = 1; d < kLevels; ++d) {
-    for (int from : {at + d, at - d}) {
-      if (from < 0 || from >= kLevels || cost_ms[static_cast<std::size_t>(from)] <= 0) continue;
-      return cost_ms[static_cast<std::size_t>(from)] * std::pow(kAssumedStepRatio, from - at);
-    }
+  const auto cost = [this](int l) { return cost_ms[static_cast<std::size_t>(l)]; };
+  if (cost(at) > 0) return cost(at);
+  int finer = at - 1, coarser = at + 1;
+  while (finer >= 0 && cost(finer) <= 0) --finer;
+  while (coarser < kLevels && cost(coarser) <= 0) ++coarser;
+  const bool has_finer = finer >= 0, has_coarser = coarser < kLevels;
+  if (has_finer && has_coarser) {
+    const double t = static_cast<double>(at - finer) / (coarser - finer);
+    return cost(finer) * std::pow(cost(coarser) / cost(finer), t);
   }
+  if (has_finer) return cost(finer) / std::pow(kAssumedStepRatio, at - finer);
+  if (has_coarser) return cost(coarser) * std::pow(kAssumedStepRatio, coarser - at);
   return 0;  // nothing measured: try the finest
 }
 
@@ -46,7 +50,7 @@ int QualityController::choose(double budget_ms) {
 
 double frame_budget_ms(int target_fps, std::size_t active_streams) {
   if (target_fps <= 0) return 0;
-  return 0.8 * 1000.0 / target_fps / static_cast<double>(std::max<std::size_t>(1, active_streams));
+  return 0.9 * 1000.0 / target_fps / static_cast<double>(std::max<std::size_t>(1, active_streams));
 }
 
 }  // namespace tourmap::server

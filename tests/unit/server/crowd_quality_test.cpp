@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <limits>
 
 namespace tourmap::server {
@@ -35,11 +36,23 @@ TEST(CrowdFrameQuality, CoarserLevelsShrinkTheFrameAndCoarsenTheCutInClientPixel
 
 TEST(CrowdQualityController, CoarsensUntilTheCostFitsTheBudget) {
   QualityController c;
-  // Full quality costs 140 ms; the budget is 53 ms (15 fps): down at once by the assumed ratio.
+  // Full quality costs 140 ms; the budget is 60 ms (15 fps): down at once by the assumed ratio.
   c.record(0, 140);
-  const int level = c.choose(frame_budget_ms(15, 1));
-  EXPECT_EQ(level, 2);  // 140 / 1.7 = 82 > 53; 140 / 1.7^2 = 48 <= 53
-  EXPECT_NEAR(c.predicted_ms(2), 140 / (1.7 * 1.7), 1e-9);
+  EXPECT_EQ(c.choose(frame_budget_ms(15, 1)), 3);  // 140 / 1.4^2 = 71 > 60; 140 / 1.4^3 = 51 <= 60
+  EXPECT_NEAR(c.predicted_ms(3), 140 / (1.4 * 1.4 * 1.4), 1e-9);
+}
+
+TEST(CrowdQualityController, InterpolatesBetweenMeasuredLevels) {
+  QualityController c;
+  c.record(0, 110);
+  c.record(5, 42);  // vertex-bound: the smallest frame still costs 42 ms
+  const double ratio = std::pow(110.0 / 42.0, 1.0 / 5);
+  EXPECT_NEAR(c.predicted_ms(4), 42 * ratio, 1e-9);
+  EXPECT_NEAR(c.predicted_ms(1), 110 / ratio, 1e-9);
+  c.level = 5;
+  EXPECT_EQ(c.choose(60), 4);  // 42 x 1.21 = 51 <= 0.9 x 60: one finer
+  c.record(4, 58);
+  EXPECT_EQ(c.choose(60), 4);  // level 3: 58 x (110 / 58)^(1/4) = 68 > 54
 }
 
 TEST(CrowdQualityController, GoesFinerOneLevelAtATimeWhileThereIsRoom) {
@@ -49,9 +62,9 @@ TEST(CrowdQualityController, GoesFinerOneLevelAtATimeWhileThereIsRoom) {
   EXPECT_EQ(c.choose(50), 3);
   c.record(3, 9);
   EXPECT_EQ(c.choose(50), 2);
-  c.record(2, 30);
-  EXPECT_EQ(c.choose(50), 2);  // level 1 predicted 51 ms: over 0.85 x 50
-  c.record(2, 30);
+  c.record(2, 34);
+  EXPECT_EQ(c.choose(50), 2);  // level 1 predicted 34 x 1.4 = 48 ms: over 0.9 x 50
+  c.record(2, 34);
   EXPECT_EQ(c.choose(50), 2);  // stays: no flip-flopping
 }
 
@@ -67,8 +80,8 @@ TEST(CrowdQualityController, MeasuredCostsWinOverTheAssumedRatio) {
 }
 
 TEST(CrowdQualityController, SharesTheBudgetBetweenStreamsAndIgnoresBadSamples) {
-  EXPECT_NEAR(frame_budget_ms(15, 1), 0.8 * 1000 / 15, 1e-9);
-  EXPECT_NEAR(frame_budget_ms(15, 4), 0.8 * 1000 / 15 / 4, 1e-9);
+  EXPECT_NEAR(frame_budget_ms(15, 1), 0.9 * 1000 / 15, 1e-9);
+  EXPECT_NEAR(frame_budget_ms(15, 4), 0.9 * 1000 / 15 / 4, 1e-9);
   EXPECT_EQ(frame_budget_ms(0, 1), 0);
   QualityController c;
   c.record(0, -1);
