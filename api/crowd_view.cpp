@@ -63,6 +63,7 @@ CrowdView apply_view_message(const nlohmann::json& msg, const CrowdView& current
     v.quality = static_cast<int>(json_number(*x, "quality", limits.min_quality, limits.max_quality));
   if (const auto* x = member(msg, "target_fps"))
     v.target_fps = static_cast<int>(json_number(*x, "target_fps", 0, limits.max_fps));
+  if (const auto* x = member(msg, "interacting")) v.interacting = json_bool(*x, "interacting") ? 1 : 0;
   if (const auto* x = member(msg, "heatmap")) v.heatmap = json_bool(*x, "heatmap");
   if (const auto* x = member(msg, "animate")) v.animate = json_bool(*x, "animate");
   if (const auto* x = member(msg, "count"))

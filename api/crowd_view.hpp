@@ -41,6 +41,10 @@ struct CrowdView {
   // resolution, LOD and JPEG quality; a still camera then gets one full-quality frame.
   // 0: every frame at full quality.
   int target_fps = 15;
+  // The client says whether the user is moving the camera (a drag or a key held: 1) or has let
+  // go (0), as vtk.js's start/end interaction do: no full-quality frame mid-drag, and the one at
+  // the end at once. -1: never said; the server then guesses from camera moves (kCameraSettle).
+  int interacting = -1;
 
   bool operator==(const CrowdView&) const = default;
   // Same eye, target and field of view (or both the scene's default camera).

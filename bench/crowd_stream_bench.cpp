@@ -10,7 +10,9 @@
 //    frames, bytes per frame;
 //  - still: animation off; each client orbits for 1.5 s and stops, then waits for the frame that
 //    shows its last camera at full quality (the "still" frame): ms from its last camera message
-//    to that frame's arrival, over 5 stops per client.
+//    to that frame's arrival, over 5 stops per client. "client says": the view messages carry
+//    "interacting" (true while orbiting, false with the last camera), as the web client's do;
+//    "server guesses": no hint, the server waits for the camera to rest (100 ms).
 //
 //   build/bench/crowd_stream_bench [--scenes office] [--seconds 10] [--width 1280] [--height 720]
 //       [--poe 0.5] [--quality 75] [--target-fps 15] [--stops 5] [--max-subdivision -1] [--db FILE]
@@ -50,6 +52,7 @@ struct Run {
   std::string scene;
   int target_fps = 0;
   bool moving = true;
+  bool hint = true;  // still runs: the client says when it interacts ("interacting"), as the web client does
 };
 
 struct ClientResult {
@@ -92,8 +95,11 @@ class StreamClient {
     while (!has_frame_) receive();  // the first frame (the scene may need preparing)
   }
 
-  void look(double degrees) {
-    ws_.send(json{{"type", "view"}, {"camera", camera_at(ready_, degrees)}}.dump());
+  // `interacting`: -1 leaves it out, else the hint the web client sends (true while dragging).
+  void look(double degrees, int interacting = -1) {
+    json view{{"type", "view"}, {"camera", camera_at(ready_, degrees)}};
+    if (interacting >= 0) view["interacting"] = interacting == 1;
+    ws_.send(view.dump());
     ++views_sent_;
     last_send_ = Clock::now();
   }
@@ -184,14 +190,15 @@ ClientResult stopping(unsigned short port, const Options& o, const Run& run, int
     for (int stop = 0; stop < o.stops; ++stop) {
       const auto orbit = Clock::now();
       degrees += kDegreesPerSecond * 0.05;  // the same camera again would change nothing: no frame
-      c.look(degrees);
+      c.look(degrees, run.hint ? 1 : -1);
       for (;;) {
         c.receive();
         c.count(r);
-        if (seconds_since(orbit) >= 1.5) break;
         degrees += kDegreesPerSecond * 0.05;
-        c.look(degrees);
+        if (seconds_since(orbit) >= 1.5) break;
+        c.look(degrees, run.hint ? 1 : -1);
       }
+      c.look(degrees, run.hint ? 0 : -1);  // the last move (with the hint: and the user lets go)
       // Stopped: frames until the one that shows the last camera at full quality.
       while (!c.final_frame()) {
         c.receive();
@@ -253,10 +260,13 @@ int main(int argc, char** argv) {
     {  // warm-up: prepares the scene (loads or builds the hierarchies) outside the measurement
       StreamClient warm(server.port(), o, {scene, 0, true});
     }
-    for (const bool is_moving : {true, false})
-      for (int clients : {1, 4})
-        for (int target : {0, o.target_fps}) {
-          const Run run{scene, target, is_moving};
+    const std::vector<Run> runs = {{scene, 0, true, true},           {scene, o.target_fps, true, true},
+                                   {scene, 0, false, true},          {scene, o.target_fps, false, true},
+                                   {scene, o.target_fps, false, false}};
+    for (const Run& run : runs)
+      for (int clients : {1, 4}) {
+          const bool is_moving = run.moving;
+          const int target = run.target_fps;
           std::vector<ClientResult> results(static_cast<std::size_t>(clients));
           std::vector<std::thread> threads;
           for (int c = 0; c < clients; ++c)
@@ -282,7 +292,8 @@ int main(int argc, char** argv) {
             return all.still_ms.empty() ? std::string("-") : std::to_string(static_cast<int>(std::lround(percentile(all.still_ms, q))));
           };
           std::printf("| %s | %d | %s | %d | %.2f | %.0f ms | %.0f ms | %.0f | %.2f | %.2f | %.1f | %.2f | %.2f | %.1f | %s | %s |\n",
-                      scene.c_str(), clients, is_moving ? "moving" : "still", target, fps_sum / clients,
+                      scene.c_str(), clients, is_moving ? "moving" : run.hint ? "still, client says" : "still, server guesses",
+                      target, fps_sum / clients,
                       percentile(all.latency_ms, 0.5), percentile(all.latency_ms, 0.99), percentile(all.level, 0.5),
                       percentile(all.scale, 0.5), percentile(all.cut_ms, 0.5), percentile(all.render_ms, 0.5),
                       percentile(all.readback_ms, 0.5), percentile(all.encode_ms, 0.5),

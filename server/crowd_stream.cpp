@@ -43,6 +43,7 @@ struct CrowdStreamer::Stream {
   double fps = 0;          // exponential average of the frame rate
   QualityController quality;           // interactive frames' level
   Clock::time_point camera_moved_at{}; // the last view message that moved the camera
+  bool camera_dirty = false;           // the camera moved since the last frame started
   Clock::time_point frame_done{};      // when the last frame was sent (or found unchanged)
   bool still_pending = false;          // the last frame sent was below full quality
   // The last frame sent while not animating (at most max_width x max_height x 4 bytes), to
@@ -181,8 +182,10 @@ WsEndpoint CrowdStreamer::endpoint() {
       const api::CrowdView next = api::apply_view_message(msg, st->view, limits_);
       if (st->has_view && !st->failed && next == st->view) return;  // nothing new to render
       // A camera moved after the first frame: interactive frames until it rests.
-      if (st->has_view && st->frame_id.load() > 0 && next.scene == st->view.scene && !next.same_camera(st->view))
+      if (st->has_view && st->frame_id.load() > 0 && next.scene == st->view.scene && !next.same_camera(st->view)) {
         st->camera_moved_at = Clock::now();
+        st->camera_dirty = true;
+      }
       st->view = next;
       ++st->views;
       st->has_view = true;
@@ -247,7 +250,7 @@ void CrowdStreamer::run() {
         if (!s || s->is_closed() || !st->has_view || st->failed) continue;
         // At rest: no move for kCameraSettle, and none in as long after the last frame (a client
         // that moves the camera once it sees a frame is not at rest while a slow frame renders).
-        const bool still = st->still_pending && !st->view.animate &&
+        const bool still = st->still_pending && !st->view.animate && st->view.interacting != 1 &&
                            now - std::max(st->camera_moved_at, st->frame_done) >= kCameraSettle;
         if (!st->dirty && !st->view.animate && !still) continue;  // nothing changed
         if (s->binary_in_flight() > 0) continue;           // previous frame not written yet
@@ -368,7 +371,11 @@ void CrowdStreamer::render_one(Stream& st, const std::shared_ptr<WsSession>& ses
     changed = st.dirty;
     st.dirty = false;
     previous = st.last_frame;
-    in_motion = view.animate || t0 - st.camera_moved_at < kCameraSettle;
+    // A client that says whether it interacts is believed; otherwise a frame for a camera move
+    // (however long other streams' frames delayed it) or a recent move counts.
+    in_motion = view.animate || view.interacting == 1 ||
+                (view.interacting == -1 && (st.camera_dirty || t0 - st.camera_moved_at < kCameraSettle));
+    st.camera_dirty = false;
     // Streams that want frames continuously share the render thread, hence each one's budget.
     active = 0;
     for (const auto& [key, other] : streams_)

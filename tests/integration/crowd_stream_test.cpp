@@ -193,6 +193,36 @@ TEST(CrowdApi, AMovingCameraGetsInteractiveFramesThenOneFullQualityStillFrame) {
   EXPECT_THROW(ws.receive_message(1500ms), std::exception);
 }
 
+// A client that says it interacts (a drag) gets no full-quality frame mid-drag, however long it
+// holds still, and the full-quality frame at once when it lets go.
+TEST(CrowdApi, AClientThatSaysItInteractsGetsTheStillFrameWhenItLetsGo) {
+  LiveServer s(crowd_flags());
+  WsClient ws(s.port(), "/api/v1/crowd/stream");
+  ws.send(R"({"type":"view","scene":"office","width":1280,"height":720,"quality":90,"mode":"nolod","animate":false,)"
+          R"("target_fps":30})");
+  const Frame first = next_frame(ws);
+  ws.send(R"({"type":"view","interacting":true,"camera":{"eye":[2,6,2],"target":[20,1,20],"fov":60}})");
+  const Frame moving = next_frame(ws);
+  EXPECT_EQ(moving.stats["quality"]["mode"], "interactive");
+  EXPECT_GT(moving.stats["quality"]["level"].get<int>(), 0);
+  // Holding still mid-drag: no frame (a full-quality one would block the next move).
+  std::this_thread::sleep_for(1s);
+  ws.send(R"({"type":"view","interacting":true,"camera":{"eye":[2,6,3],"target":[20,1,20],"fov":60}})");
+  const Frame moved = next_frame(ws);
+  EXPECT_EQ(moved.id, moving.id + 1);
+  EXPECT_EQ(moved.stats["quality"]["mode"], "interactive");
+  // Letting go: the next frame is the full-quality one of that camera.
+  ws.send(R"({"type":"view","interacting":false})");
+  const Frame still = next_frame(ws);
+  EXPECT_EQ(still.id, moved.id + 1);
+  EXPECT_EQ(still.stats["quality"]["mode"], "still");
+  EXPECT_EQ(still.stats["quality"]["level"], 0);
+  EXPECT_EQ(still.width, 1280);
+  EXPECT_EQ(still.stats["view"], 4);
+  EXPECT_GT(first.id, 0u);
+  EXPECT_THROW(ws.receive_message(1500ms), std::exception);
+}
+
 TEST(CrowdApi, StreamSendsJpegFramesWithStatsAndFollowsTheCamera) {
   LiveServer s(crowd_flags());
   WsClient ws(s.port(), "/api/v1/crowd/stream");
@@ -238,6 +268,8 @@ TEST(CrowdApi, BadMessagesGetErrorsNamingTheFieldAndTheStreamGoesOn) {
   EXPECT_EQ(error_message(ws)["field"], "scene");
   ws.send(R"({"type":"view","scene":"office","target_fps":31})");
   EXPECT_EQ(error_message(ws)["field"], "target_fps");
+  ws.send(R"({"type":"view","scene":"office","interacting":"yes"})");
+  EXPECT_EQ(error_message(ws)["field"], "interacting");
   ws.send(kSmallOffice);
   next_frame(ws);
   ws.send(R"({"type":"view","poe":-1})");

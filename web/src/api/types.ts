@@ -546,6 +546,8 @@ export interface CrowdViewMessage {
   count?: number;
   /** Frames per second to hold while the camera moves or the crowd animates (0: always full quality). */
   target_fps?: number;
+  /** The user is moving the camera (no full-quality frame until false). */
+  interacting?: boolean;
 }
 
 export interface CrowdProgressMessage {

@@ -110,6 +110,9 @@ export class OrbitCamera {
   private keyTime = 0;
   /** The user moved the camera since the last reset. */
   moved = false;
+  /** Wheel turns count as one interaction until the wheel rests this long. */
+  private static readonly WHEEL_REST_MS = 200;
+  private wheelTimer = 0;
 
   constructor(
     private readonly element: HTMLElement,
@@ -142,7 +145,7 @@ export class OrbitCamera {
     this.pitch = clamp(Math.asin(clamp(offset[1] / this.distance, -1, 1)), MIN_PITCH, MAX_PITCH);
     this.keepAboveGround();
     this.moved = false;
-    this.stopKeys();
+    this.stopKeys(false);
     this.publish();
   }
 
@@ -214,6 +217,20 @@ export class OrbitCamera {
     this.moved = true;
     this.publish();
     this.onChange(this.camera);
+  }
+
+  /**
+   * The user is moving the camera: a pointer is down, a move key is held or the wheel turned in
+   * the last WHEEL_REST_MS. Sent with the view ("interacting"), so the server keeps frames light
+   * meanwhile and sends the sharp one as soon as the user lets go.
+   */
+  get interacting(): boolean {
+    return this.pointers.size > 0 || this.keys.size > 0 || this.wheelTimer !== 0;
+  }
+
+  /** An input ended: when it was the last one, the view goes again (now not interacting). */
+  private inputEnded(): void {
+    if (!this.interacting) this.onChange(this.camera);
   }
 
   // ---- Moves ----
@@ -288,12 +305,18 @@ export class OrbitCamera {
   }
 
   private pointerUp(event: PointerEvent): void {
-    this.pointers.delete(event.pointerId);
+    if (!this.pointers.delete(event.pointerId)) return;
+    this.inputEnded();
   }
 
   private wheel(event: WheelEvent): void {
     event.preventDefault();
     const pixels = event.deltaY * (event.deltaMode === WheelEvent.DOM_DELTA_LINE ? 16 : event.deltaMode === WheelEvent.DOM_DELTA_PAGE ? 400 : 1);
+    window.clearTimeout(this.wheelTimer);
+    this.wheelTimer = window.setTimeout(() => {
+      this.wheelTimer = 0;
+      this.inputEnded();
+    }, OrbitCamera.WHEEL_REST_MS);
     this.dolly(Math.exp(clamp(pixels, -300, 300) * DOLLY_SPEED));
     this.changed();
   }
@@ -328,14 +351,16 @@ export class OrbitCamera {
 
   private keyUp(event: KeyboardEvent): void {
     const move = MOVE_KEYS[event.code];
-    if (move) this.keys.delete(move);
     this.fast = event.shiftKey;
+    if (move && this.keys.delete(move)) this.inputEnded();
   }
 
-  private stopKeys(): void {
+  private stopKeys(notify = true): void {
+    const held = notify && this.keys.size > 0;
     this.keys.clear();
     cancelAnimationFrame(this.keyFrame);
     this.keyFrame = 0;
+    if (held) this.inputEnded();
   }
 
   /** Moves the target while keys are held: on the ground along the view's heading, or up and down. */

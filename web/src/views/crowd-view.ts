@@ -250,6 +250,7 @@ export class CrowdView implements View {
       heatmap: settings.heatmap,
       animate: settings.animate,
       target_fps: settings.smoothFps,
+      interacting: this.camera.interacting,
       ...(settings.count !== undefined ? { count: settings.count } : {}),
     };
   }
