@@ -235,7 +235,9 @@ void CrowdStreamer::run() {
       // (a frame becomes due when its predecessor is written or the fps cap allows).
       const auto wants_frames = [this] {
         for (const auto& [key, st] : streams_)
-          if (st->has_view && !st->failed && (st->dirty || st->view.animate || st->still_pending)) return true;
+          if (st->has_view && !st->failed &&
+              (st->dirty || st->view.animate || (st->still_pending && st->view.interacting != 1)))
+            return true;
         return false;
       };
       if (wants_frames()) wake_.wait_for(lock, std::chrono::milliseconds(5));

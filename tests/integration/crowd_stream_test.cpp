@@ -152,14 +152,27 @@ TEST(CrowdApi, AnEyeUnderTheFloorIsLiftedAboveIt) {
   EXPECT_NE(onto.jpeg, above.jpeg);
 }
 
+// NoLOD at 1280x720 with 200 characters: far more than 30 fps allow on any software renderer.
+const char* kHeavyOffice =
+    R"({"type":"view","scene":"office","width":1280,"height":720,"quality":90,"mode":"nolod","animate":false,)"
+    R"("target_fps":30})";
+
+// The frame a resting camera gets from kHeavyOffice: the requested size and JPEG quality.
+void expect_full_quality_still(const Frame& f) {
+  EXPECT_EQ(f.stats["quality"]["mode"], "still");
+  EXPECT_EQ(f.stats["quality"]["level"], 0);
+  EXPECT_EQ(f.width, 1280);
+  EXPECT_EQ(f.height, 720);
+  EXPECT_EQ(f.stats["quality"]["jpeg"], 90);
+}
+
 // Issue 18: while the camera moves, frames that hold target_fps (smaller, coarser); once it rests,
 // one frame at the full size and quality. NoLOD at 1280x720 with 200 characters costs far more
 // than 30 fps allow on any software renderer, so the moving frames must come smaller.
 TEST(CrowdApi, AMovingCameraGetsInteractiveFramesThenOneFullQualityStillFrame) {
   LiveServer s(crowd_flags());
   WsClient ws(s.port(), "/api/v1/crowd/stream");
-  ws.send(R"({"type":"view","scene":"office","width":1280,"height":720,"quality":90,"mode":"nolod","animate":false,)"
-          R"("target_fps":30})");
+  ws.send(kHeavyOffice);
   const Frame first = next_frame(ws);
   EXPECT_EQ(first.stats["quality"]["mode"], "still");
   EXPECT_EQ(first.width, 1280);
@@ -185,11 +198,7 @@ TEST(CrowdApi, AMovingCameraGetsInteractiveFramesThenOneFullQualityStillFrame) {
   // The camera rests: the same view at full quality, then nothing more.
   const Frame still = next_frame(ws);
   EXPECT_EQ(still.id, last.id + 1);
-  EXPECT_EQ(still.stats["quality"]["mode"], "still");
-  EXPECT_EQ(still.stats["quality"]["level"], 0);
-  EXPECT_EQ(still.width, 1280);
-  EXPECT_EQ(still.height, 720);
-  EXPECT_EQ(still.stats["quality"]["jpeg"], 90);
+  expect_full_quality_still(still);
   EXPECT_THROW(ws.receive_message(1500ms), std::exception);
 }
 
@@ -198,8 +207,7 @@ TEST(CrowdApi, AMovingCameraGetsInteractiveFramesThenOneFullQualityStillFrame) {
 TEST(CrowdApi, AClientThatSaysItInteractsGetsTheStillFrameWhenItLetsGo) {
   LiveServer s(crowd_flags());
   WsClient ws(s.port(), "/api/v1/crowd/stream");
-  ws.send(R"({"type":"view","scene":"office","width":1280,"height":720,"quality":90,"mode":"nolod","animate":false,)"
-          R"("target_fps":30})");
+  ws.send(kHeavyOffice);
   const Frame first = next_frame(ws);
   ws.send(R"({"type":"view","interacting":true,"camera":{"eye":[2,6,2],"target":[20,1,20],"fov":60}})");
   const Frame moving = next_frame(ws);
@@ -215,9 +223,7 @@ TEST(CrowdApi, AClientThatSaysItInteractsGetsTheStillFrameWhenItLetsGo) {
   ws.send(R"({"type":"view","interacting":false})");
   const Frame still = next_frame(ws);
   EXPECT_EQ(still.id, moved.id + 1);
-  EXPECT_EQ(still.stats["quality"]["mode"], "still");
-  EXPECT_EQ(still.stats["quality"]["level"], 0);
-  EXPECT_EQ(still.width, 1280);
+  expect_full_quality_still(still);
   EXPECT_EQ(still.stats["view"], 4);
   EXPECT_GT(first.id, 0u);
   EXPECT_THROW(ws.receive_message(1500ms), std::exception);
@@ -268,8 +274,14 @@ TEST(CrowdApi, BadMessagesGetErrorsNamingTheFieldAndTheStreamGoesOn) {
   EXPECT_EQ(error_message(ws)["field"], "scene");
   ws.send(R"({"type":"view","scene":"office","target_fps":31})");
   EXPECT_EQ(error_message(ws)["field"], "target_fps");
-  ws.send(R"({"type":"view","scene":"office","interacting":"yes"})");
-  EXPECT_EQ(error_message(ws)["field"], "interacting");
+  for (const char* bad : {"-1", "1e308", "\"15\"", "null", "[15]"}) {
+    ws.send(std::string(R"({"type":"view","scene":"office","target_fps":)") + bad + "}");
+    EXPECT_EQ(error_message(ws)["field"], "target_fps") << bad;
+  }
+  for (const char* bad : {"\"yes\"", "1", "null"}) {
+    ws.send(std::string(R"({"type":"view","scene":"office","interacting":)") + bad + "}");
+    EXPECT_EQ(error_message(ws)["field"], "interacting") << bad;
+  }
   ws.send(kSmallOffice);
   next_frame(ws);
   ws.send(R"({"type":"view","poe":-1})");
