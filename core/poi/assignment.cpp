@@ -1,8 +1,10 @@
 #include "poi/assignment.hpp"
 
 #include "poi/spatial.hpp"
+#include "util/prefault.hpp"
 
 #include <algorithm>
+#include <cstring>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -100,178 +102,338 @@ CycleCover min_cycle_cover_dense(const std::vector<geo::XY>& points) {
 
 namespace {
 
-// The candidate arcs of every point: its k nearest, plus the points that have it among theirs.
-// An outlier is nobody's near neighbour, yet the optimum would put it into a cycle through its
-// own nearest ones (a -> outlier -> b), which needs the arc into it: with the reverse arcs the
+// The candidate arcs of every point, with their costs: first the point itself (staying alone,
+// at self_loop_penalty), then its k nearest, then the points that have it among theirs. An
+// outlier is nobody's near neighbour, yet the optimum would put it into a cycle through its own
+// nearest ones (a -> outlier -> b), which needs the arc into it: with the reverse arcs the
 // sparse optimum matches the dense one on real data at k = 8 (and merges no 300-point chains).
-struct Arcs {
-  std::vector<std::uint32_t> first;  // n + 1 offsets into `to`
-  std::vector<std::uint32_t> to;     // sorted per point, no duplicates, never the point itself
+struct Candidates {
+  std::vector<std::uint32_t> first;  // n + 1 offsets into `to` and `cost`
+  std::vector<std::uint32_t> to;     // no duplicates; the row's own point first
+  std::vector<float> cost;           // float: half the memory traffic of the searches
 };
 
-Arcs symmetric_knn(const std::vector<geo::XY>& points, std::size_t k) {
-  const std::size_t n = points.size();
-  const Neighbours nb = k_nearest(points, std::max<std::size_t>(k, 1));
-  Arcs g;
-  g.first.assign(n + 1, 0);
-  for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t a = 0; a < nb.k; ++a) {
-      ++g.first[i + 1];
-      ++g.first[nb.index[i * nb.k + a] + 1];
-    }
-  for (std::size_t i = 0; i < n; ++i) g.first[i + 1] += g.first[i];
-  g.to.resize(g.first[n]);
-  std::vector<std::uint32_t> fill(g.first.begin(), g.first.end() - 1);
-  for (std::uint32_t i = 0; i < n; ++i)
-    for (std::size_t a = 0; a < nb.k; ++a) {
-      const std::uint32_t j = nb.index[i * nb.k + a];
-      g.to[fill[i]++] = j;
-      g.to[fill[j]++] = i;
-    }
-  // Sort each list and drop the arcs listed twice (in both kNN lists), compacting in place.
-  std::size_t out = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    const auto begin = g.to.begin() + g.first[i], end = g.to.begin() + g.first[i + 1];
-    std::sort(begin, end);
-    g.first[i] = static_cast<std::uint32_t>(out);
-    for (auto it = begin; it != end; ++it)
-      if (it == begin || *it != *(it - 1)) g.to[out++] = *it;
+// Per column, what the searches read together (one cache line instead of five arrays).
+struct Column {
+  double v = 0;                  // potential: reduced costs are c_ij - v_j - u_i
+  double d = 0;                  // tentative distance in the search stamped `seen`
+  std::uint32_t y = kNone;       // row assigned to this column
+  std::uint32_t pred = kNone;    // row the search reached it from
+  std::uint32_t seen = 0, done = 0;  // stamps of the last search that reached / settled it
+};
+
+// A radix heap (Ahuja, Mehlhorn, Orlin and Tarjan 1990) of columns by tentative distance: a
+// Dijkstra search pops non-decreasing keys, and non-negative doubles order like their bit
+// patterns, so an item sits in the bucket of the highest bit where its key differs from the
+// last popped one and moves down at most 64 times. Pushes append; a pop scans one bucket. The
+// searches of the long augmenting paths hold 10^4..10^5 columns: popping a 4-ary heap of that
+// size took half of their time. Decrease-key pushes again; the stale entry is skipped on pop.
+class RadixHeap {
+ public:
+  bool empty() const { return size_ == 0; }
+  double last() const { return last_key_; }
+  void clear() {
+    for (auto& b : buckets_) b.clear();
+    size_ = 0;
+    last_ = 0;
+    last_key_ = 0;
   }
-  g.first[n] = static_cast<std::uint32_t>(out);
-  g.to.resize(out);
-  g.to.shrink_to_fit();
-  return g;
+  // key >= last(): callers clamp (a reduced cost can round a hair below zero).
+  void push(double key, std::uint32_t col) {
+    const std::uint64_t k = bits(key);
+    buckets_[bucket(k)].push_back({k, col});
+    ++size_;
+  }
+  std::pair<double, std::uint32_t> pop() {
+    if (buckets_[0].empty()) {
+      std::size_t i = 1;
+      while (buckets_[i].empty()) ++i;
+      auto& from = buckets_[i];
+      std::uint64_t smallest = from[0].first;
+      for (const auto& item : from) smallest = std::min(smallest, item.first);
+      last_ = smallest;
+      std::memcpy(&last_key_, &last_, sizeof last_);
+      for (const auto& item : from) buckets_[bucket(item.first)].push_back(item);
+      from.clear();
+    }
+    const auto item = buckets_[0].back();
+    buckets_[0].pop_back();
+    --size_;
+    return {last_key_, item.second};
+  }
+
+ private:
+  static std::uint64_t bits(double key) {
+    std::uint64_t k;
+    std::memcpy(&k, &key, sizeof k);
+    return k;
+  }
+  std::size_t bucket(std::uint64_t k) const {
+    return k == last_ ? 0 : static_cast<std::size_t>(64 - __builtin_clzll(k ^ last_));
+  }
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> buckets_[65];
+  std::size_t size_ = 0;
+  std::uint64_t last_ = 0;
+  double last_key_ = 0;
+};
+
+struct Row {
+  std::uint32_t x = kNone;  // column assigned to this row
+  float cost = 0;           // c_{i, x(i)}
+};
+
+}  // namespace
+
+struct SparseCoverScratch::Buffers {
+  util::ForkJoin pool{2};  // the kNN search on both cores of the target machine
+  Neighbours nb;
+  std::vector<std::uint32_t> fill_at;
+  std::vector<char> reverse;  // per kNN arc j -> i: whether i lacks j, so i gets the arc back
+  Candidates g;
+  std::vector<Column> col;
+  std::vector<Row> row;
+  std::vector<std::uint32_t> free_rows, next_free, settled;
+  RadixHeap heap;
+};
+
+SparseCoverScratch::SparseCoverScratch() : buffers(std::make_unique<Buffers>()) {}
+SparseCoverScratch::~SparseCoverScratch() = default;
+
+namespace {
+
+using Buffers = SparseCoverScratch::Buffers;
+
+void build_candidates(const std::vector<geo::XY>& points, std::size_t k, Buffers& b) {
+  const std::size_t n = points.size();
+  k_nearest(points, std::max<std::size_t>(k, 1), b.nb, &b.pool);
+  const Neighbours& nb = b.nb;
+  auto listed = [&](std::uint32_t i, std::uint32_t j) {  // j among i's k nearest
+    const std::uint32_t* row = &nb.index[i * nb.k];
+    return std::find(row, row + nb.k, j) != row + nb.k;
+  };
+  // A reverse arc j -> i (i among j's nearest) is added unless i lists j too.
+  Candidates& g = b.g;
+  util::assign_prefaulted(g.first, n + 1, 0u);
+  std::vector<char>& reverse = b.reverse;
+  util::resize_prefaulted(reverse, n * nb.k);
+  for (std::uint32_t j = 0; j < n; ++j) {
+    g.first[j + 1] += static_cast<std::uint32_t>(1 + nb.k);
+    for (std::size_t a = 0; a < nb.k; ++a) {
+      const std::uint32_t i = nb.index[j * nb.k + a];
+      reverse[j * nb.k + a] = !listed(i, j);
+      g.first[i + 1] += reverse[j * nb.k + a];
+    }
+  }
+  for (std::size_t i = 0; i < n; ++i) g.first[i + 1] += g.first[i];
+  util::resize_prefaulted(g.to, g.first[n]);
+  util::resize_prefaulted(g.cost, g.first[n]);
+  // Fill: the own point and the k nearest at the start of each row, the reverse arcs after them.
+  std::vector<std::uint32_t>& fill = b.fill_at;
+  util::reserve_prefaulted(fill, n);
+  fill.assign(g.first.begin(), g.first.end() - 1);
+  for (std::uint32_t i = 0; i < n; ++i) {
+    g.to[fill[i]++] = i;
+    for (std::size_t a = 0; a < nb.k; ++a) g.to[fill[i]++] = nb.index[i * nb.k + a];
+  }
+  for (std::uint32_t j = 0; j < n; ++j)
+    for (std::size_t a = 0; a < nb.k; ++a)
+      if (reverse[j * nb.k + a]) g.to[fill[nb.index[j * nb.k + a]]++] = j;
+  // Costs; staying alone costs the penalty over the row's farthest candidate and the mean arc.
+  double sum = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    double farthest = 0;
+    for (std::size_t a = g.first[i] + 1; a < g.first[i + 1]; ++a) {
+      const double c = dist(points[i], points[g.to[a]]);
+      g.cost[a] = static_cast<float>(c);
+      sum += c;
+      farthest = std::max(farthest, c);
+    }
+    g.cost[g.first[i]] = static_cast<float>(farthest);  // for now; the penalty needs the mean
+  }
+  const double mean = sum / static_cast<double>(g.to.size() - n);
+  for (std::size_t i = 0; i < n; ++i) g.cost[g.first[i]] = static_cast<float>(self_loop_penalty(g.cost[g.first[i]], mean));
 }
 
-// Successive shortest augmenting paths (the Hungarian method on a sparse graph, as in the
-// augmentation step of Jonker-Volgenant): rows are points, columns successors; column
-// potentials v keep every reduced cost c_ij - v_j - u_i >= 0 with u_i = c_i,x(i) - v_x(i), zero on
-// the assigned pairs. A greedy start assigns each row its nearest column when free; each
-// remaining row then augments along a Dijkstra shortest path to a free column, and the columns
-// the search settled get their potentials lowered so the invariant holds. Exact over the
-// candidates. An epsilon-scaling auction was tried first: same costs, but 6x slower on one round
-// over 10^6 synthetic points (12.9 s vs 1.9 s, kNN included), and 10x slower on GeoNames with
+void assign(Buffers& b, std::uint32_t i, std::uint32_t j, float c) {
+  b.row[i] = {j, c};
+  b.col[j].y = i;
+}
+
+// Greedy start (v = 0): each row takes its cheapest column while that is free.
+void greedy_start(Buffers& b) {
+  const Candidates& g = b.g;
+  b.free_rows.clear();
+  for (std::uint32_t i = 0; i < b.row.size(); ++i) {
+    std::size_t best = g.first[i];
+    for (std::size_t a = best + 1; a < g.first[i + 1]; ++a)
+      if (g.cost[a] < g.cost[best]) best = a;
+    if (b.col[g.to[best]].y == kNone)
+      assign(b, i, g.to[best], g.cost[best]);
+    else
+      b.free_rows.push_back(i);
+  }
+}
+
+// Jonker and Volgenant's augmenting row reduction (1987), on the candidate arcs: a free row
+// takes its cheapest column j1 and lowers v_j1 by the gap to its second cheapest, so j1 stays its
+// minimum; the row it evicts continues the chain while that gap was positive. Cheap, local, and
+// it leaves far fewer free rows for the shortest-path phase. Two passes as in JV; a chain is cut
+// after 8 steps per free row (its last row waits for the next pass or the shortest paths).
+void augmenting_row_reduction(Buffers& b) {
+  const Candidates& g = b.g;
+  for (int pass = 0; pass < 4 && !b.free_rows.empty(); ++pass) {
+    b.next_free.clear();
+    std::size_t steps = 0;
+    const std::size_t cap = 8 * b.free_rows.size();
+    for (std::uint32_t i : b.free_rows) {
+      for (;;) {
+        std::size_t a1 = kNone, a2 = kNone;
+        double u1 = kInf, u2 = kInf;
+        for (std::size_t a = g.first[i]; a < g.first[i + 1]; ++a) {
+          const double h = g.cost[a] - b.col[g.to[a]].v;
+          if (h < u2) {
+            if (h >= u1) {
+              u2 = h;
+              a2 = a;
+            } else {
+              u2 = u1;
+              a2 = a1;
+              u1 = h;
+              a1 = a;
+            }
+          }
+        }
+        std::uint32_t j = g.to[a1], evicted = b.col[j].y;
+        const bool gap = u1 < u2 && a2 != kNone;
+        if (gap) {
+          b.col[j].v -= u2 - u1;
+        } else if (evicted != kNone && a2 != kNone) {  // a tie: take the other column instead
+          a1 = a2;
+          j = g.to[a1];
+          evicted = b.col[j].y;
+        }
+        assign(b, i, j, g.cost[a1]);
+        if (evicted == kNone) break;
+        b.row[evicted].x = kNone;
+        if (gap && ++steps < cap) {
+          i = evicted;
+          continue;
+        }
+        b.next_free.push_back(evicted);
+        break;
+      }
+    }
+    b.free_rows.swap(b.next_free);
+  }
+}
+
+// Successive shortest augmenting paths (the augmentation step of Jonker-Volgenant): each
+// remaining free row augments along a Dijkstra shortest path over reduced costs to a free
+// column, and the columns the search settled get their potentials lowered so the invariant
+// holds. Exact over the candidates. An epsilon-scaling auction was tried first: same costs,
+// but 6x slower on one round over 10^6 synthetic points, and 10x slower on GeoNames with
 // per-point epsilons (price wars across cost scales).
 //
-// The points come in Hilbert order (memory locality) and the free rows augment in a fixed
-// pseudo-random order: in a spatial sweep the last rows find their free columns at the far end
-// of the map, and each search settles a large part of it (GeoNames sorted by x: 6x slower).
-CycleCover cover_in_hilbert_order(const std::vector<geo::XY>& points, std::size_t k) {
-  const std::size_t n = points.size();
-  const Arcs g = symmetric_knn(points, k);
-
-  std::vector<double> penalty(n, 0.0);
-  double sum = 0;
-  for (std::size_t i = 0; i < n; ++i)
-    for (std::size_t a = g.first[i]; a < g.first[i + 1]; ++a) {
-      const double d = dist(points[i], points[g.to[a]]);
-      sum += d;
-      penalty[i] = std::max(penalty[i], d);
-    }
-  const double mean = sum / static_cast<double>(g.to.size());
-  for (double& p : penalty) p = self_loop_penalty(p, mean);
-  auto cost = [&](std::uint32_t i, std::uint32_t j) { return i == j ? penalty[i] : dist(points[i], points[j]); };
-  // Calls f(j) for each candidate column of row i: itself, then its arcs.
-  auto for_columns = [&](std::uint32_t i, auto&& f) {
-    f(i);
-    for (std::size_t a = g.first[i]; a < g.first[i + 1]; ++a) f(g.to[a]);
-  };
-
-  std::vector<double> v(n, 0.0);
-  std::vector<std::uint32_t> x(n, kNone), y(n, kNone), free_rows;  // x: row -> column, y: column -> row
-  for (std::uint32_t i = 0; i < n; ++i) {
-    std::uint32_t best = i;
-    for_columns(i, [&](std::uint32_t j) {
-      if (cost(i, j) < cost(i, best)) best = j;
-    });
-    if (y[best] == kNone) {
-      x[i] = best;
-      y[best] = i;
-    } else {
-      free_rows.push_back(i);
-    }
-  }
-
+// The free rows augment in a fixed pseudo-random order: in a spatial sweep the last rows find
+// their free columns at the far end of the map, and each search settles a large part of it
+// (GeoNames sorted by x: 6x slower). Most searches settle a handful of columns; a few settle
+// tens of thousands and shift a chain of hundreds of pairs (a coast of evenly spaced places
+// where one more place changes every pairing's parity), and they take most of the time.
+void shortest_augmenting_paths(Buffers& b) {
+  const Candidates& g = b.g;
   std::mt19937 rng(20240531);
-  std::shuffle(free_rows.begin(), free_rows.end(), rng);
+  std::shuffle(b.free_rows.begin(), b.free_rows.end(), rng);
 
-  std::vector<double> d(n, kInf);
-  std::vector<std::uint32_t> pred(n, kNone), touched, settled;
-  std::vector<char> done(n, 0);
-  using Item = std::pair<double, std::uint32_t>;
-  std::vector<Item> heap;  // a min-heap by distance, kept allocated across searches
-  const auto later = std::greater<Item>();
-  for (const std::uint32_t f : free_rows) {
-    // Relaxes the arcs of row i, reached at distance `base`, whose u_i is `u`.
-    auto relax = [&](std::uint32_t i, double base, double u) {
-      for_columns(i, [&](std::uint32_t j) {
-        if (done[j]) return;
-        const double nd = base + cost(i, j) - v[j] - u;
-        if (nd < d[j]) {
-          if (d[j] == kInf) touched.push_back(j);
-          d[j] = nd;
-          pred[j] = i;
-          heap.emplace_back(nd, j);
-          std::push_heap(heap.begin(), heap.end(), later);
-        }
-      });
-    };
+  RadixHeap& heap = b.heap;  // kept allocated across searches
+  std::uint32_t search = 0;
+  // Relaxes the arcs of row i, reached at distance `base`, whose u_i is `u`.
+  auto relax = [&](std::uint32_t i, double base, double u) {
+    for (std::size_t a = g.first[i]; a < g.first[i + 1]; ++a) {
+      const std::uint32_t j = g.to[a];
+      Column& c = b.col[j];
+      const double nd = std::max(base + g.cost[a] - c.v - u, heap.last());
+      if (c.seen != search || (c.done != search && nd < c.d)) {
+        c.seen = search;
+        c.d = nd;
+        c.pred = i;
+        heap.push(nd, j);
+      }
+    }
+  };
+  auto arc_cost = [&](std::uint32_t i, std::uint32_t j) {
+    for (std::size_t a = g.first[i];; ++a)
+      if (g.to[a] == j) return g.cost[a];
+  };
+  for (const std::uint32_t f : b.free_rows) {
+    ++search;
     double u = kInf;
-    for_columns(f, [&](std::uint32_t j) { u = std::min(u, cost(f, j) - v[j]); });
+    for (std::size_t a = g.first[f]; a < g.first[f + 1]; ++a) u = std::min(u, g.cost[a] - b.col[g.to[a]].v);
     relax(f, 0.0, u);
     std::uint32_t end = kNone;
     double length = 0;
     while (!heap.empty()) {
-      std::pop_heap(heap.begin(), heap.end(), later);
-      const auto [dj, j] = heap.back();
-      heap.pop_back();
-      if (done[j] || dj > d[j]) continue;
-      done[j] = 1;
-      settled.push_back(j);
-      if (y[j] == kNone) {
+      const auto [dj, j] = heap.pop();
+      Column& c = b.col[j];
+      if (c.done == search || dj > c.d) continue;
+      c.done = search;
+      b.settled.push_back(j);
+      if (c.y == kNone) {
         end = j;
         length = dj;
         break;
       }
-      relax(y[j], dj, cost(y[j], j) - v[j]);
+      relax(c.y, dj, b.row[c.y].cost - c.v);
     }
     // Unreachable: the identity is a perfect matching, so every free row has an augmenting path.
     if (end == kNone) throw std::logic_error("min_cycle_cover_sparse: no augmenting path");
-    for (const std::uint32_t j : settled) v[j] -= length - d[j];
+    for (const std::uint32_t j : b.settled) b.col[j].v -= length - b.col[j].d;
     for (std::uint32_t j = end;;) {
-      const std::uint32_t i = pred[j], next = x[i];
-      x[i] = j;
-      y[j] = i;
+      const std::uint32_t i = b.col[j].pred, next = b.row[i].x;
+      assign(b, i, j, arc_cost(i, j));
       if (i == f) break;
       j = next;
     }
-    for (const std::uint32_t j : touched) {
-      d[j] = kInf;
-      done[j] = 0;
-    }
-    touched.clear();
-    settled.clear();
+    b.settled.clear();
     heap.clear();
   }
+}
 
+CycleCover cover_in_hilbert_order(const std::vector<geo::XY>& points, std::size_t k, Buffers& b) {
+  const std::size_t n = points.size();
+  build_candidates(points, k, b);
+  util::assign_prefaulted(b.col, n, Column{});
+  util::assign_prefaulted(b.row, n, Row{});
+  greedy_start(b);
+  augmenting_row_reduction(b);
+  shortest_augmenting_paths(b);
   CycleCover out;
-  out.successor = std::move(x);
+  out.successor.resize(n);
   for (std::uint32_t i = 0; i < n; ++i) {
-    if (out.successor[i] == i) ++out.self_loops;
-    out.cost += cost(i, out.successor[i]);
+    const std::uint32_t j = b.row[i].x;
+    out.successor[i] = j;
+    if (j == i) {
+      ++out.self_loops;
+      out.cost += b.g.cost[b.g.first[i]];
+    } else {
+      out.cost += dist(points[i], points[j]);
+    }
   }
   return out;
 }
 
 }  // namespace
 
-CycleCover min_cycle_cover_sparse(const std::vector<geo::XY>& points, std::size_t k) {
+CycleCover min_cycle_cover_sparse(const std::vector<geo::XY>& points, std::size_t k, bool in_hilbert_order,
+                                  SparseCoverScratch* scratch) {
   const std::size_t n = points.size();
   if (n < 2) return identity(n);
+  SparseCoverScratch own;
+  Buffers& b = scratch ? *scratch->buffers : *own.buffers;
+  if (in_hilbert_order) return cover_in_hilbert_order(points, k, b);
   const std::vector<std::uint32_t> order = hilbert_order(points);  // rank -> point
   std::vector<geo::XY> sorted(n);
   for (std::size_t r = 0; r < n; ++r) sorted[r] = points[order[r]];
-  CycleCover out = cover_in_hilbert_order(sorted, k);
+  CycleCover out = cover_in_hilbert_order(sorted, k, b);
   std::vector<std::uint32_t> successor(n);
   for (std::size_t r = 0; r < n; ++r) successor[order[r]] = order[out.successor[r]];
   out.successor = std::move(successor);

@@ -2,6 +2,7 @@
 
 #include "poi/assignment.hpp"
 #include "poi/spatial.hpp"
+#include "util/prefault.hpp"
 #include "util/stop.hpp"
 
 #include <algorithm>
@@ -61,27 +62,48 @@ void merge_cycles(ClusterTree& t, const std::vector<std::uint32_t>& clusters,
 }
 
 // Groups of more than k clusters with identical centres would see only each other's first k in
-// the kd-tree and mostly stay alone: such a group merges outright (its cycle cost is 0 anyway).
-// The other clusters go to `pending`.
-void merge_identical(ClusterTree& t, const std::vector<std::uint32_t>& clusters, std::size_t k, std::uint32_t level,
-                     std::vector<std::uint32_t>& next, std::vector<std::uint32_t>& pending) {
-  std::vector<std::uint32_t> order = clusters;
-  std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
-    const geo::XY p = t.nodes[a].center, q = t.nodes[b].center;
-    return std::tie(p.x, p.y, a) < std::tie(q.x, q.y, b);
-  });
+// the kNN graph and mostly stay alone: such a group merges outright (its cycle cost is 0 anyway).
+// `clusters` come in Hilbert order with their curve `cells`; identical centres share a cell, so
+// only a run of more than k clusters in one cell can hold such a group. The other clusters go to
+// `pending`, still in curve order.
+void merge_identical(ClusterTree& t, std::vector<std::uint32_t>& clusters, const std::vector<std::uint32_t>& cells,
+                     std::size_t k, std::uint32_t level, std::vector<std::uint32_t>& next,
+                     std::vector<std::uint32_t>& pending) {
   auto same = [&](std::uint32_t a, std::uint32_t b) {
     return t.nodes[a].center.x == t.nodes[b].center.x && t.nodes[a].center.y == t.nodes[b].center.y;
   };
-  for (std::size_t a = 0, b; a < order.size(); a = b) {
-    for (b = a + 1; b < order.size() && same(order[a], order[b]);) ++b;
-    if (b - a > k) {
-      next.push_back(make_node(t, std::span(order).subspan(a, b - a), level));
-    } else {
-      pending.insert(pending.end(), order.begin() + static_cast<std::ptrdiff_t>(a),
-                  order.begin() + static_cast<std::ptrdiff_t>(b));
+  for (std::size_t r0 = 0, r1; r0 < clusters.size(); r0 = r1) {
+    for (r1 = r0 + 1; r1 < clusters.size() && cells[r1] == cells[r0];) ++r1;
+    const auto run = std::span(clusters).subspan(r0, r1 - r0);
+    if (run.size() <= k) {
+      pending.insert(pending.end(), run.begin(), run.end());
+      continue;
+    }
+    std::sort(run.begin(), run.end(), [&](std::uint32_t a, std::uint32_t b) {
+      const geo::XY p = t.nodes[a].center, q = t.nodes[b].center;
+      return std::tie(p.x, p.y, a) < std::tie(q.x, q.y, b);
+    });
+    for (std::size_t a = 0, b; a < run.size(); a = b) {
+      for (b = a + 1; b < run.size() && same(run[a], run[b]);) ++b;
+      if (b - a > k) {
+        next.push_back(make_node(t, run.subspan(a, b - a), level));
+      } else {
+        pending.insert(pending.end(), run.begin() + static_cast<std::ptrdiff_t>(a),
+                       run.begin() + static_cast<std::ptrdiff_t>(b));
+      }
     }
   }
+}
+
+// The clusters of `clusters` in Hilbert order of their centres, with their curve cells.
+void sort_along_curve(const ClusterTree& t, std::vector<std::uint32_t>& clusters, std::vector<geo::XY>& centers,
+                      std::vector<std::uint32_t>& cells) {
+  centers.resize(clusters.size());
+  for (std::size_t i = 0; i < clusters.size(); ++i) centers[i] = t.nodes[clusters[i]].center;
+  const std::vector<std::uint32_t> order = hilbert_order(centers, &cells);
+  std::vector<std::uint32_t> sorted(clusters.size());
+  for (std::size_t r = 0; r < order.size(); ++r) sorted[r] = clusters[order[r]];
+  clusters.swap(sorted);
 }
 
 // Progress guarantee for a round that merged nothing: pair clusters with their nearest
@@ -114,9 +136,9 @@ ClusterTree build_cluster_tree(const std::vector<ClusterPoint>& points, const Cl
   if (n > 0x7fffffff) throw std::length_error("build_cluster_tree: too many points for 32-bit node ids");
   t.leaves = n;
   // At most n - 1 clusters (each merges two or more): reserving that avoids a reallocation copy,
-  // and the pages past the final size are never touched.
-  t.nodes.reserve(2 * n);
-  t.children.reserve(2 * n);
+  // and faulting its pages in at once saves a kernel trap per 4 KiB (see util/prefault.hpp).
+  util::reserve_prefaulted(t.nodes, 2 * n);
+  util::reserve_prefaulted(t.children, 2 * n);
   for (std::uint32_t i = 0; i < n; ++i) {
     const ClusterPoint& p = points[i];
     if (!std::isfinite(p.pos.x) || !std::isfinite(p.pos.y) || !std::isfinite(p.worth) || p.worth < 0)
@@ -131,16 +153,19 @@ ClusterTree build_cluster_tree(const std::vector<ClusterPoint>& points, const Cl
   }
   if (n == 0) return t;
 
-  std::vector<std::uint32_t> current(n), next, pending;
+  std::vector<std::uint32_t> current(n), next, pending, cells;
   for (std::uint32_t i = 0; i < n; ++i) current[i] = i;
   std::vector<geo::XY> centers;
+  SparseCoverScratch scratch;  // the sparse rounds reuse its memory
   // Step (c): one round per level until one root remains; every round merges at least one pair.
   for (std::uint32_t level = 1; current.size() > 1; ++level) {
     util::check_stop();  // a round over a million clusters takes a while
     next.clear();
     pending.clear();
-    if (current.size() > options.dense_limit) {
-      merge_identical(t, current, std::max<std::size_t>(options.k, 1), level, next, pending);
+    const bool sparse = current.size() > options.dense_limit;
+    if (sparse) {
+      sort_along_curve(t, current, centers, cells);
+      merge_identical(t, current, cells, std::max<std::size_t>(options.k, 1), level, next, pending);
     } else {
       pending = current;
     }
@@ -148,8 +173,8 @@ ClusterTree build_cluster_tree(const std::vector<ClusterPoint>& points, const Cl
     if (pending.size() >= 2) {
       centers.resize(pending.size());
       for (std::size_t i = 0; i < pending.size(); ++i) centers[i] = t.nodes[pending[i]].center;
-      const CycleCover cover = pending.size() <= options.dense_limit ? min_cycle_cover_dense(centers)
-                                                                  : min_cycle_cover_sparse(centers, options.k);
+      const CycleCover cover = sparse ? min_cycle_cover_sparse(centers, options.k, true, &scratch)
+                                      : min_cycle_cover_dense(centers);
       const std::size_t before = next.size();
       merge_cycles(t, pending, cover.successor, level, next);
       if (next.size() - before == pending.size() && next.size() == current.size()) {

@@ -76,6 +76,26 @@ TEST(PoiAssignment, SparseWithAllCandidatesMatchesDense) {
   }
 }
 
+// Tight towns with stacked points and long gaps between them: ties everywhere for the row
+// reduction, and augmenting paths that shift whole chains.
+TEST(PoiAssignment, SparseWithAllCandidatesMatchesDenseOnTownsWithStackedPoints) {
+  for (unsigned seed = 1; seed <= 6; ++seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> u(0.0, 1e4);
+    std::vector<XY> p;
+    while (p.size() < 240) {
+      const XY c{u(rng), u(rng)};
+      for (std::size_t i = 0, size = 1 + rng() % 9; i < size; ++i)
+        p.push_back(rng() % 3 == 0 && i > 0 ? p.back() : XY{c.x + u(rng) / 1000, c.y + u(rng) / 1000});
+    }
+    auto dense = min_cycle_cover_dense(p);
+    auto sparse = min_cycle_cover_sparse(p, p.size() - 1);
+    expect_permutation(sparse.successor);
+    EXPECT_EQ(sparse.self_loops, 0u);
+    EXPECT_NEAR(sparse.cost, dense.cost, 1e-6 * dense.cost) << "seed " << seed;
+  }
+}
+
 TEST(PoiAssignment, SparseWithFewCandidatesIsValidAndNotBetterThanDense) {
   for (unsigned seed = 1; seed <= 10; ++seed) {
     auto p = random_points(300, seed);
