@@ -23,6 +23,7 @@
 #include "poi/active_clusters.hpp"
 #include "poi/assignment.hpp"
 #include "poi/cluster_tree.hpp"
+#include "poi/cluster_update.hpp"
 #include "poi/serialize.hpp"
 #include "process_memory.hpp"
 
@@ -339,6 +340,114 @@ std::vector<std::int32_t> tree_cut(const ClusterTree& t, std::size_t want, std::
   return label;
 }
 
+// The same cut for a tree whose nodes are not in creation order (an updated one): undo the
+// merges of the highest round first (later nodes first within a round) until >= `want`.
+std::vector<std::int32_t> tree_cut_by_level(const ClusterTree& t, std::size_t want, std::size_t& clusters) {
+  std::vector<std::uint32_t> inner;
+  for (auto id = static_cast<std::uint32_t>(t.leaves); id < t.nodes.size(); ++id) inner.push_back(id);
+  std::sort(inner.begin(), inner.end(), [&](std::uint32_t a, std::uint32_t b) {
+    return t.nodes[a].level != t.nodes[b].level ? t.nodes[a].level > t.nodes[b].level : a > b;
+  });
+  std::vector<char> undone(t.nodes.size(), 0);
+  std::size_t count = 1;
+  for (std::uint32_t id : inner) {
+    if (count >= want) break;
+    undone[id] = 1;
+    count += t.nodes[id].child_count - 1;
+  }
+  std::vector<std::int32_t> dense(t.nodes.size(), -1), label(t.leaves);
+  clusters = 0;
+  for (std::uint32_t leaf = 0; leaf < t.leaves; ++leaf) {
+    std::uint32_t cut = leaf;  // the highest ancestor not undone (undone nodes form a top)
+    for (std::int32_t p = t.nodes[leaf].parent; p >= 0; p = t.nodes[p].parent)
+      if (!undone[p]) cut = static_cast<std::uint32_t>(p);
+    if (dense[cut] < 0) dense[cut] = static_cast<std::int32_t>(clusters++);
+    label[leaf] = dense[cut];
+  }
+  return label;
+}
+
+// ---- Incremental updates (issue 19) ----
+
+// 1,000 edits as a day of POI writes might bring: a third removed, a third moved by ~300 m (some
+// re-weighted only), a third added near existing POIs. Returns the POI list after them.
+std::vector<ClusterPoint> edits_for(const std::vector<ClusterPoint>& before, std::size_t removed, std::size_t moved,
+                                    std::size_t added, unsigned seed, ClusterEdits& e) {
+  std::mt19937 rng(seed);
+  std::vector<std::uint32_t> order(before.size());
+  for (std::uint32_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::shuffle(order.begin(), order.end(), rng);
+  std::normal_distribution<double> step(0.0, 300.0);
+  std::exponential_distribution<double> w(1.0);
+  e = {};
+  e.removed.assign(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(removed));
+  std::vector<ClusterPoint> now = before;
+  for (std::size_t k = removed; k < removed + moved; ++k) {
+    ClusterPoint p = before[order[k]];
+    if (k % 4 == 0)
+      p.worth *= 2;
+    else
+      p.pos = {p.pos.x + step(rng), p.pos.y + step(rng)};
+    e.changed.emplace_back(order[k], p);
+    now[order[k]] = p;
+  }
+  for (std::size_t k = 0; k < added; ++k) {
+    const ClusterPoint& near = before[order[before.size() - 1 - k]];
+    e.added.push_back({{near.pos.x + step(rng), near.pos.y + step(rng)}, near.worth * w(rng)});
+  }
+  std::vector<char> gone(before.size(), 0);
+  for (std::uint32_t i : e.removed) gone[i] = 1;
+  std::vector<ClusterPoint> after;
+  for (std::uint32_t i = 0; i < before.size(); ++i)
+    if (!gone[i]) after.push_back(now[i]);
+  after.insert(after.end(), e.added.begin(), e.added.end());
+  return after;
+}
+
+void print_updates(const Built& b, const ClusterOptions& options) {
+  struct Case {
+    const char* name;
+    std::size_t removed, moved, added;
+  };
+  const Case cases[] = {{"1 added", 0, 0, 1}, {"1 moved", 0, 1, 0}, {"1 removed", 1, 0, 0}, {"1,000 mixed", 333, 333, 334}};
+  for (const Case& c : cases) {
+    ClusterEdits e;
+    const auto after = edits_for(b.points, c.removed, c.moved, c.added, 21, e);
+    // The service keeps built trees shared and read-only: it updates a copy.
+    auto t0 = Clock::now();
+    ClusterTree t = copy_for_update(b.tree);
+    const double copy_ms = ms_since(t0);
+    t0 = Clock::now();
+    const ClusterUpdateStats stats = update_cluster_tree(t, e, options);
+    const double update_ms = ms_since(t0);
+    std::printf("| %s | %s | %.1f | %.0f | %.2f %% | %.0f | %zu | %zu | %zu | %zu |", b.name.c_str(), c.name, update_ms,
+                b.build_ms, 100.0 * update_ms / b.build_ms, copy_ms, stats.inserted, stats.resolved, stats.split,
+                stats.dissolved);
+    if (c.added + c.moved + c.removed < 1000) {
+      std::printf(" - | - |\n");
+      continue;
+    }
+    // Quality against a rebuild of the same POIs, at three cluster counts.
+    t0 = Clock::now();
+    const ClusterTree rebuilt = build_cluster_tree(after, options);
+    const double rebuild_ms = ms_since(t0);
+    std::string quality;
+    for (const std::size_t want : {after.size() / 1000, after.size() / 100, after.size() / 10}) {
+      std::size_t c_inc = 0, c_new = 0;
+      const auto inc_labels = tree_cut_by_level(t, want, c_inc);
+      const auto new_labels = tree_cut_by_level(rebuilt, want, c_new);
+      const double inc = mean_centroid_distance_km(after, inc_labels, c_inc);
+      const double fresh = mean_centroid_distance_km(after, new_labels, c_new);
+      char cell[96];
+      std::snprintf(cell, sizeof cell, "%s%zu: %.3f / %.3f (%.3f)", quality.empty() ? "" : "; ", c_new, inc, fresh,
+                    inc / fresh);
+      quality += cell;
+    }
+    std::printf(" %.0f | %s |\n", rebuild_ms, quality.c_str());
+  }
+  std::fflush(stdout);
+}
+
 template <class T>
 void write_array(const std::filesystem::path& path, const std::vector<T>& v) {
   std::ofstream out(path, std::ios::binary);
@@ -538,6 +647,17 @@ int main(int argc, char** argv) {
     set_windows.push_back(make_windows(b, windows, 11));
     print_queries(b, set_windows.back());
   }
+
+  std::printf(
+      "\n## Incremental updates (issue 19): edits applied to the built tree in place, against its build time; "
+      "quality = mean km from each POI to its cluster's centroid at about C clusters, updated / rebuilt "
+      "(ratio; < 1: the update clusters tighter)\n\n");
+  std::printf(
+      "| points | edits | update ms | build ms | update / build | copy of the tree ms | inserted | covers re-solved | "
+      "splits | dissolved | rebuild ms | quality at C: updated / rebuilt (ratio) |\n");
+  std::printf("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n");
+  for (const auto& b : sets)
+    if (b.points.size() >= 100000) print_updates(b, options);
 
   std::printf("\n## Side by side with mapbox/supercluster 9.1.0 (issue 19)\n");
   const std::filesystem::path root = TOURMAP_SOURCE_DIR;

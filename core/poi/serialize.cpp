@@ -95,6 +95,9 @@ ClusterTree deserialize(std::string_view bytes) {
   ClusterTree t;
   t.leaves = leaves;
   t.root = root;
+  // Room for incremental updates to add POIs without moving the array (poi/cluster_update.hpp);
+  // pages that are never written cost no memory.
+  t.nodes.reserve(node_count + node_count / 8);
   t.nodes.resize(node_count);
   for (ClusterNode& c : t.nodes) {
     for (double* v : {&c.center.x, &c.center.y, &c.min.x, &c.min.y, &c.max.x, &c.max.y, &c.worth}) *v = load_double(p);

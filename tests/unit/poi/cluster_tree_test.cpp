@@ -1,5 +1,7 @@
 #include "poi/cluster_tree.hpp"
 
+#include "cluster_tree_checks.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -16,77 +18,6 @@ std::vector<ClusterPoint> random_points(std::size_t n, unsigned seed) {
   std::vector<ClusterPoint> p(n);
   for (auto& q : p) q = {{u(rng), u(rng)}, std::floor(w(rng) * 4)};  // integral worth: many ties
   return p;
-}
-
-// Everything a consumer relies on: one root, every POI a leaf exactly once, fields consistent
-// bottom-up.
-void expect_consistent(const ClusterTree& t, const std::vector<ClusterPoint>& points) {
-  const std::size_t n = points.size();
-  ASSERT_EQ(t.leaves, n);
-  if (n == 0) {
-    EXPECT_TRUE(t.nodes.empty());
-    return;
-  }
-  ASSERT_LT(t.root, t.nodes.size());
-  EXPECT_EQ(t.nodes[t.root].parent, -1);
-  EXPECT_EQ(t.nodes[t.root].size, n);
-  EXPECT_EQ(t.children.size(), t.nodes.size() - 1);
-  std::vector<int> listed(t.nodes.size(), 0);
-  for (std::uint32_t id = 0; id < t.nodes.size(); ++id) {
-    const ClusterNode& c = t.nodes[id];
-    if (id != t.root) {
-      ASSERT_GE(c.parent, 0) << id;
-    }
-    if (id < n) {
-      EXPECT_EQ(c.child_count, 0u);
-      EXPECT_EQ(c.size, 1u);
-      EXPECT_EQ(c.level, 0u);
-      EXPECT_EQ(c.representative, id);
-      EXPECT_EQ(c.worth, points[id].worth);
-      EXPECT_EQ(c.min.x, points[id].pos.x);
-      EXPECT_EQ(c.max.y, points[id].pos.y);
-      continue;
-    }
-    ASSERT_GE(c.child_count, 2u) << id;
-    std::uint32_t size = 0;
-    double worth = -1, cx = 0, cy = 0;
-    std::uint32_t rep = 0;
-    geo::XY lo{INFINITY, INFINITY}, hi{-INFINITY, -INFINITY};
-    for (std::uint32_t a = 0; a < c.child_count; ++a) {
-      std::uint32_t ch = t.children[c.first_child + a];
-      const ClusterNode& k = t.nodes[ch];
-      ++listed[ch];
-      EXPECT_EQ(k.parent, static_cast<std::int32_t>(id));
-      EXPECT_LT(k.level, c.level);
-      size += k.size;
-      cx += k.center.x * k.size;
-      cy += k.center.y * k.size;
-      lo = {std::min(lo.x, k.min.x), std::min(lo.y, k.min.y)};
-      hi = {std::max(hi.x, k.max.x), std::max(hi.y, k.max.y)};
-      if (k.worth > worth || (k.worth == worth && k.representative < rep)) {
-        worth = k.worth;
-        rep = k.representative;
-      }
-    }
-    EXPECT_EQ(c.size, size);
-    EXPECT_EQ(c.worth, worth);
-    EXPECT_EQ(c.representative, rep);
-    EXPECT_EQ(points[c.representative].worth, c.worth);
-    EXPECT_EQ(c.min.x, lo.x);
-    EXPECT_EQ(c.min.y, lo.y);
-    EXPECT_EQ(c.max.x, hi.x);
-    EXPECT_EQ(c.max.y, hi.y);
-    EXPECT_NEAR(c.center.x, cx / size, 1e-6);
-    EXPECT_NEAR(c.center.y, cy / size, 1e-6);
-  }
-  for (std::uint32_t id = 0; id < t.nodes.size(); ++id) EXPECT_EQ(listed[id], id == t.root ? 0 : 1) << id;
-  // Every POI reaches the root.
-  for (std::uint32_t leaf = 0; leaf < n; ++leaf) {
-    std::uint32_t at = leaf;
-    for (std::size_t steps = 0; t.nodes[at].parent >= 0 && steps < t.nodes.size(); ++steps)
-      at = static_cast<std::uint32_t>(t.nodes[at].parent);
-    EXPECT_EQ(at, t.root);
-  }
 }
 
 TEST(PoiClusterTree, DenseTreeIsConsistent) {
