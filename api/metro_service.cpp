@@ -302,11 +302,24 @@ std::shared_ptr<const poi::ClusterTree> MetroService::tree_for(const std::string
     std::vector<poi::ClusterPoint> in;
     for (std::size_t i = 0; i < points.size(); ++i)
       in.push_back({points[i], skip && (*skip)[i] ? 0.0 : worth[i]});
-    auto built = std::make_shared<const poi::ClusterTree>(poi::build_cluster_tree(in));
-    store::cache_put(*db, key, "clusters", {"application/octet-stream", poi::serialize(*built)});
-    return built;
+    std::shared_ptr<const poi::ClusterTree> made;
+    // After a POI write: update the tree served for the previous version (api/cluster_tree_reuse).
+    if (auto previous = latest_trees_.previous(key)) {
+      poi::ClusterUpdateStats stats;
+      if (auto derived = derive_tree(*previous, in, &stats)) {
+        made = std::make_shared<const poi::ClusterTree>(std::move(*derived));
+        ++(stats.rebuilt ? trees_built_ : trees_updated_);
+      }
+    }
+    if (!made) {
+      made = std::make_shared<const poi::ClusterTree>(poi::build_cluster_tree(in));
+      ++trees_built_;
+    }
+    store::cache_put(*db, key, "clusters", {"application/octet-stream", poi::serialize(*made)});
+    return made;
   });
   trees_.put(key, tree, bytes_of(*tree));
+  latest_trees_.remember(key, tree);
   return tree;
 }
 

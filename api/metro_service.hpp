@@ -9,6 +9,7 @@
 // layout and is announced through the event sink (WS /api/v1/events, wired by the server).
 
 #include "catalog.hpp"
+#include "cluster_tree_reuse.hpp"
 #include "layout_improver.hpp"
 #include "http.hpp"
 #include "lru_cache.hpp"
@@ -82,6 +83,10 @@ class MetroService {
     std::uint64_t scheduled = 0, improved = 0, not_improved = 0, stale = 0;
   };
   ImprovementStats improvement_stats() const;
+  // Cluster trees made since the start: built from scratch, or updated from the tree served
+  // for the city's previous version (api/cluster_tree_reuse.hpp).
+  std::uint64_t cluster_trees_built() const { return trees_built_; }
+  std::uint64_t cluster_trees_updated() const { return trees_updated_; }
   // Shutdown: stop_improvements() waits for the improver's thread (a running MIP is killed);
   // call it before whatever the event sink publishes to goes away. request_stop_improvements()
   // only asks (for a signal handler that must not block).
@@ -151,6 +156,8 @@ class MetroService {
   LruCache<std::shared_ptr<const GeoCenters>> geo_centers_;  // by geographic tree key
   SingleFlight<std::shared_ptr<const CityLayout>> layout_flight_;
   SingleFlight<std::shared_ptr<const poi::ClusterTree>> tree_flight_;
+  LatestTrees latest_trees_;
+  std::atomic<std::uint64_t> trees_built_{0}, trees_updated_{0};
   EventSink event_sink_;
   std::atomic<std::uint64_t> scheduled_{0}, improved_{0}, not_improved_{0}, stale_{0};
   // Last: destroyed first, so a running job never sees the caches above gone.

@@ -90,6 +90,15 @@ void add_improvement_gauges(ServerState& state, api::MetroService& metro) {
     state.metrics.add_gauge(g.name, g.help, [&metro, read = g.read] { return read(metro.improvement_stats()); });
 }
 
+// How POI cluster trees were made (api/cluster_tree_reuse.hpp).
+void add_cluster_tree_gauges(ServerState& state, api::MetroService& metro) {
+  state.metrics.add_gauge("tourmap_cluster_trees_built", "POI cluster trees built from scratch (grows).",
+                          [&metro] { return static_cast<double>(metro.cluster_trees_built()); });
+  state.metrics.add_gauge("tourmap_cluster_trees_updated",
+                          "POI cluster trees updated from the one served for the previous city version (grows).",
+                          [&metro] { return static_cast<double>(metro.cluster_trees_updated()); });
+}
+
 // Accepts connections. When accepting fails (the process is out of file descriptors: EMFILE,
 // or the system: ENFILE, ENOBUFS, ENOMEM), the pending connection stays in the listen queue
 // and the next accept would fail at once: without a pause the loop spins a core at 100 %.
@@ -204,6 +213,7 @@ int serve(const Config& config, const std::function<void(unsigned short)>& on_li
                             return static_cast<double>(s.network_bytes + s.prepared_bytes + s.result_bytes);
                           });
   add_improvement_gauges(state, metro);
+  add_cluster_tree_gauges(state, metro);
   state.metrics.add_gauge("tourmap_crowd_variants_evicted",
                           "Prepared crowd scene variants (scene, count) evicted to make room (grows).",
                           [&crowd] { return static_cast<double>(crowd.variants_evicted()); });

@@ -325,6 +325,42 @@ void renumber(Editor& ed, const ClusterEdits& e) {
 
 }  // namespace
 
+void permute_leaves(ClusterTree& t, const std::vector<std::uint32_t>& new_index) {
+  const std::size_t n = t.leaves;
+  if (new_index.size() != n) throw std::invalid_argument("permute_leaves: one new index per leaf expected");
+  std::vector<char> hit(n, 0);
+  for (std::uint32_t j : new_index) {
+    if (j >= n || hit[j]) throw std::invalid_argument("permute_leaves: not a permutation");
+    hit[j] = 1;
+  }
+  std::vector<ClusterNode> leaves(t.nodes.begin(), t.nodes.begin() + static_cast<std::ptrdiff_t>(n));
+  for (std::size_t i = 0; i < n; ++i) {
+    ClusterNode& leaf = t.nodes[new_index[i]];
+    leaf = leaves[i];
+    leaf.representative = new_index[i];
+  }
+  for (std::uint32_t& c : t.children)
+    if (c < n) c = new_index[c];
+  if (t.root < n) t.root = new_index[t.root];
+  // Representatives bottom-up: clusters by level, the lowest index winning ties again.
+  std::vector<std::uint32_t> clusters;
+  for (auto id = static_cast<std::uint32_t>(n); id < t.nodes.size(); ++id) clusters.push_back(id);
+  std::stable_sort(clusters.begin(), clusters.end(),
+                   [&](std::uint32_t a, std::uint32_t b) { return t.nodes[a].level < t.nodes[b].level; });
+  for (std::uint32_t id : clusters) {
+    ClusterNode& c = t.nodes[id];
+    bool first = true;
+    for (std::uint32_t a = 0; a < c.child_count; ++a) {
+      const ClusterNode& child = t.nodes[t.children[c.first_child + a]];
+      if (first || std::tie(child.worth, c.representative) > std::tie(c.worth, child.representative)) {
+        c.worth = child.worth;
+        c.representative = child.representative;
+        first = false;
+      }
+    }
+  }
+}
+
 ClusterTree copy_for_update(const ClusterTree& tree) {
   ClusterTree copy;
   copy.nodes.reserve(tree.nodes.size() + tree.nodes.size() / 8);
@@ -337,8 +373,10 @@ ClusterTree copy_for_update(const ClusterTree& tree) {
 
 ClusterUpdateStats update_cluster_tree(ClusterTree& t, const ClusterEdits& e, const ClusterOptions& options) {
   validate(t, e);
-  // A tree of at most one POI, or one that keeps none: nothing local to do, build it.
-  if (t.leaves < 2 || e.removed.size() + e.changed.size() >= t.leaves) {
+  // A tree of at most one POI, or one that keeps none in place: nothing local to do, build it.
+  std::size_t moved = 0;
+  for (const auto& [i, p] : e.changed) moved += p.pos.x != t.nodes[i].center.x || p.pos.y != t.nodes[i].center.y;
+  if (t.leaves < 2 || e.removed.size() + moved >= t.leaves) {
     std::vector<ClusterPoint> points;
     std::vector<char> gone(t.leaves, 0);
     for (std::uint32_t i : e.removed) gone[i] = 1;

@@ -39,6 +39,11 @@ struct ClusterUpdateStats {
   bool rebuilt = false;        // the tree had no POI left to attach to: built from scratch
 };
 
+// Renumbers the leaves (POIs): leaf i becomes leaf new_index[i] (a permutation of 0..leaves-1),
+// for a caller whose POI list orders them differently. Representatives are chosen again, since
+// their ties go to the lowest index. Throws std::invalid_argument for a non-permutation.
+void permute_leaves(ClusterTree& tree, const std::vector<std::uint32_t>& new_index);
+
 // A copy of `tree` with room for updates that add POIs: growing a vector past its capacity
 // copies it into fresh pages, which at 10^6 POIs costs more than the update itself.
 ClusterTree copy_for_update(const ClusterTree& tree);

@@ -75,13 +75,6 @@ const char* kSmallOffice =
     R"({"type":"view","scene":"office","count":12,"width":160,"height":120,"quality":70,"mode":"vdr+oc","animate":false,)"
     R"("target_fps":0})";
 
-// The value of a /metrics line, -1 when missing.
-double metric(LiveServer& s, const std::string& name) {
-  const std::string body = "\n" + s.get("/metrics").body;
-  const auto at = body.find("\n" + name + " ");
-  return at == std::string::npos ? -1 : std::atof(body.c_str() + at + name.size() + 2);
-}
-
 TEST(CrowdApi, ScenesListTheThreeScenesWithLimitsAndAttribution) {
   LiveServer s(crowd_flags());
   auto j = s.get_json("/api/v1/crowd/scenes");

@@ -111,14 +111,6 @@ double cpu_seconds(int pid) {
   return static_cast<double>(utime + stime) / static_cast<double>(sysconf(_SC_CLK_TCK));
 }
 
-// One gauge or counter sample from /metrics ("name{labels} value" or "name value").
-double metric(const LiveServer& s, const std::string& series) {
-  auto body = s.get("/metrics").body;
-  auto at = body.find("\n" + series + " ");
-  if (at == std::string::npos) return -1;
-  return std::atof(body.c_str() + at + series.size() + 2);
-}
-
 // Samples GET /api/v1/cities every 50 ms on its own connection while an attack runs.
 class CheapReadProbe {
  public:

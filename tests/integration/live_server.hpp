@@ -69,6 +69,17 @@ class LiveServer {
   std::unique_ptr<ServerProcess> server;
 };
 
+// One gauge or counter sample from /metrics ("name{labels} value" or "name value"); -1 when
+// missing.
+inline double metric(const LiveServer& s, const std::string& series) {
+  std::string body(1, '\n'), line(1, '\n');  // (not "\n" + s: gcc 12 warns falsely about that)
+  body += s.get("/metrics").body;
+  line += series;
+  line += ' ';
+  const auto at = body.find(line);
+  return at == std::string::npos ? -1 : std::atof(body.c_str() + at + series.size() + 2);
+}
+
 // The error object of a 4xx/5xx JSON body.
 inline nlohmann::json error_of(const HttpResult& r) { return nlohmann::json::parse(r.body).at("error"); }
 

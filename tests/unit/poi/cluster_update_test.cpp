@@ -166,6 +166,22 @@ TEST(PoiClusterUpdate, TinyTreesAndRemovingAlmostEverything) {
   expect_consistent(t, {before[199]});
 }
 
+TEST(PoiClusterUpdate, PermutedLeavesFollowTheNewOrder) {
+  auto before = town_points(300, 12);
+  for (std::size_t i = 0; i < before.size(); i += 7) before[i].worth = 3;  // ties for representatives
+  ClusterTree t = build_cluster_tree(before);
+  std::vector<std::uint32_t> new_index(before.size());
+  for (std::uint32_t i = 0; i < new_index.size(); ++i) new_index[i] = i;
+  std::shuffle(new_index.begin(), new_index.end(), std::mt19937(3));
+  permute_leaves(t, new_index);
+  std::vector<ClusterPoint> after(before.size());
+  for (std::size_t i = 0; i < before.size(); ++i) after[new_index[i]] = before[i];
+  expect_consistent(t, after);
+  EXPECT_THROW(permute_leaves(t, {0, 1}), std::invalid_argument);
+  new_index[0] = new_index[1];
+  EXPECT_THROW(permute_leaves(t, new_index), std::invalid_argument);
+}
+
 TEST(PoiClusterUpdate, BadEditsThrowAndLeaveTheTree) {
   const auto before = town_points(100, 6);
   ClusterTree t = build_cluster_tree(before);
