@@ -351,6 +351,8 @@ void shortest_augmenting_paths(Buffers& b) {
   RadixHeap& heap = b.heap;  // kept allocated across searches
   std::uint32_t search = 0;
   // Relaxes the arcs of row i, reached at distance `base`, whose u_i is `u`.
+  // Returns a free column reached at the distance being settled (no shorter path can exist,
+  // so the search ends there without popping the other columns of that distance), or kNone.
   auto relax = [&](std::uint32_t i, double base, double u) {
     for (std::size_t a = g.first[i]; a < g.first[i + 1]; ++a) {
       const std::uint32_t j = g.to[a];
@@ -360,9 +362,11 @@ void shortest_augmenting_paths(Buffers& b) {
         c.seen = search;
         c.d = nd;
         c.pred = i;
+        if (c.y == kNone && nd <= heap.last()) return j;
         heap.push(nd, j);
       }
     }
+    return kNone;
   };
   auto arc_cost = [&](std::uint32_t i, std::uint32_t j) {
     for (std::size_t a = g.first[i];; ++a)
@@ -372,10 +376,9 @@ void shortest_augmenting_paths(Buffers& b) {
     ++search;
     double u = kInf;
     for (std::size_t a = g.first[f]; a < g.first[f + 1]; ++a) u = std::min(u, g.cost[a] - b.col[g.to[a]].v);
-    relax(f, 0.0, u);
-    std::uint32_t end = kNone;
+    std::uint32_t end = relax(f, 0.0, u);
     double length = 0;
-    while (!heap.empty()) {
+    while (end == kNone && !heap.empty()) {
       const auto [dj, j] = heap.pop();
       Column& c = b.col[j];
       if (c.done == search || dj > c.d) continue;
@@ -386,7 +389,12 @@ void shortest_augmenting_paths(Buffers& b) {
         length = dj;
         break;
       }
-      relax(c.y, dj, b.row[c.y].cost - c.v);
+      end = relax(c.y, dj, b.row[c.y].cost - c.v);
+    }
+    if (end != kNone && b.col[end].done != search) {  // reached tight while relaxing: settle it
+      b.col[end].done = search;
+      b.settled.push_back(end);
+      length = b.col[end].d;
     }
     // Unreachable: the identity is a perfect matching, so every free row has an augmenting path.
     if (end == kNone) throw std::logic_error("min_cycle_cover_sparse: no augmenting path");
