@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <cstring>
 #include <cmath>
-#include <functional>
 #include <limits>
 #include <optional>
 #include <random>
@@ -16,7 +15,9 @@
 // Both solvers are written here: Boost and CGAL have no assignment solver, and Boost.Graph's
 // successive_shortest_path_nonnegative_weights runs a full Dijkstra over the whole flow network
 // per unit of flow (10^6 of them at 10^6 POIs), where an assignment search can stop at the first
-// free column. Each solver here is a page.
+// free column; LEMON's min-cost flow solvers took 15.5 s (cost scaling) and 3.0 s (network
+// simplex) on one 138K-point GeoNames round that the shortest paths below solve in 0.2 s. Each
+// solver here is a page.
 
 namespace tourmap::poi {
 namespace {
