@@ -237,12 +237,18 @@ TEST(LayoutImprovement, LondonGetsRoomForNamesInTheBackground) {
     }
     EXPECT_EQ(scale["small"].get<std::size_t>(), small);
   }
-  // The layout's guarantees hold (fast London: none added, none violated, 0.53).
+  // The layout's guarantees hold against the job's own start (fast London: none added, none
+  // violated, smallest gap 0.53 mean edges). Room for names keeps the gap at least min(start,
+  // 0.5); under ASan the job's spacing may stop at its time budget short of 0.5 (seen: 0.43), and
+  // then that is the floor.
   const auto& q = improved["quality"];
   EXPECT_EQ(q["octilinear_share"], 1.0);
   EXPECT_EQ(q["added_crossings"], 0);
   EXPECT_EQ(q["order_violations"], 0);
-  EXPECT_GE(q["min_station_gap_ratio"].get<double>(), 0.5 - 1e-3);
+  const auto& spacing = improved["fast_path"]["spacing"];
+  const double start_gap = spacing["gap_after"].get<double>();
+  const double floor = test::kSlowdown > 1 ? std::min(start_gap, 0.5) : 0.5;
+  EXPECT_GE(q["min_station_gap_ratio"].get<double>(), floor - 1e-3) << spacing;
 }
 
 TEST(LayoutImprovement, AnImprovementThatDoesNotWinSaysWhatItTried) {
